@@ -1,0 +1,33 @@
+// pdd: surface reconstruction by progressive discrete domains.
+// A thin client of the library: parses options, calls pdd::, reports errors.
+#include "commands.h"
+
+#include <pdd/errors.h>
+
+#include <iostream>
+
+int main(int argc, char** argv) {
+  CLI::App app{"pdd: closed triangle meshes from point clouds by progressive discrete domains\n"
+               "(Zhao, Alliez, Boubekeur, Buse, Thiery, SGP 2021)"};
+  app.set_version_flag("--version", std::string("pdd ") + PDD_VERSION);
+  app.require_subcommand(1);
+  pdd::cli::add_reconstruct_command(app);
+  pdd::cli::add_quality_command(app);
+
+  // Exit codes: 0 success, 1 runtime failure, 2 bad usage or bad input.
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  } catch (const pdd::InputError& e) {
+    std::cerr << "pdd: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "pdd: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,109 @@
+// The discrete domain (§2.2, §3.2): a 3D Delaunay triangulation carrying a
+// piecewise-linear function f at its vertices. CGAL stays in the
+// implementation; this header speaks in dense indices and Eigen vectors.
+#pragma once
+
+#include <pdd/types.h>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace pdd {
+
+// Initialization of §3.2. Defaults are the paper's.
+struct DomainOptions {
+  double enlarge_ratio = 1.4;      // radius of the domain sphere / radius of the input's bounding sphere
+  int sphere_points = 100;         // points spread uniformly on the domain sphere
+  double radius_edge_bound = 1.3;  // Delaunay refinement: circumradius / shortest edge <= this
+  int max_refinement_points = 200000;  // safety budget for the refinement (never reached in practice)
+};
+
+// Per-vertex flags.
+enum VertexFlag : std::uint8_t {
+  kOnBoundarySphere = 1,  // lies on the sphere that bounds the domain
+};
+
+// Where a point falls in the domain: the tet and its barycentric coordinates
+// (which sum to 1 and are all >= 0 up to rounding). tet == -1 when outside.
+struct Location {
+  int tet = -1;
+  std::array<double, 4> barycentric{{0, 0, 0, 0}};
+};
+
+// Statistics of the initial Delaunay refinement.
+struct RefinementReport {
+  int inserted_interior = 0;  // circumcenters inserted inside the ball
+  int inserted_boundary = 0;  // circumcenters projected onto the boundary sphere
+  int skipped = 0;            // bad cells left because no point could improve them
+  double worst_radius_edge = 0;  // largest ratio among all tets after refinement
+};
+
+class Domain {
+ public:
+  Domain();
+  // The Delaunay triangulation of the given points (duplicates are merged;
+  // vertex i of the result is the first occurrence). f starts at 0.
+  explicit Domain(const std::vector<Vec3>& points, const std::vector<std::uint8_t>& flags = {});
+  Domain(Domain&&) noexcept;
+  Domain& operator=(Domain&&) noexcept;
+  Domain(const Domain&);
+  Domain& operator=(const Domain&);
+  ~Domain();
+
+  // §3.2: the bounding sphere (c, r) of the input, `sphere_points` points on
+  // the sphere of radius enlarge_ratio * r, then Delaunay refinement until
+  // every tet's radius-edge ratio is at most radius_edge_bound.
+  static Domain initial(const PointSet& input, const DomainOptions& options = {},
+                        RefinementReport* report = nullptr);
+
+  // Dense, stable indices: vertex i keeps index i across insertions and moves.
+  std::size_t num_vertices() const;
+  std::size_t num_tets() const;
+  const std::vector<Vec3>& vertices() const;
+  // Finite tets, positively oriented. Rebuilt after each modification.
+  const std::vector<std::array<int, 4>>& tets() const;
+  // For tet t and i in 0..3: the tet opposite vertex i, or -1 on the hull.
+  const std::vector<std::array<int, 4>>& tet_neighbors() const;
+  // vertices() and tets() together, for the stages that only need geometry.
+  TetMesh mesh() const;
+
+  // The piecewise-linear function f, one value per vertex.
+  const std::vector<double>& f() const;
+  void set_f(std::vector<double> values);
+
+  const std::vector<std::uint8_t>& flags() const;
+  bool on_boundary_sphere(int vertex) const;
+  // The sphere bounding the domain (for Domain::initial) or the bounding
+  // sphere of the vertices otherwise.
+  Vec3 center() const;
+  double radius() const;
+
+  // Point location (§3.5, the sampling matrix Phi; §3.3, carrying f over).
+  Location locate(const Vec3& p) const;
+  // Value of the piecewise-linear interpolant of `values` at p; p must lie in
+  // the domain (throws std::out_of_range otherwise).
+  double interpolate(const Vec3& p, const std::vector<double>& values) const;
+
+  // Inserts points; each new vertex gets f interpolated in the tet that
+  // contained it before insertion. Returns the indices of the new vertices
+  // (points that coincide with an existing vertex are not inserted and are
+  // not returned). Points outside the domain are an std::invalid_argument.
+  std::vector<int> insert(const std::vector<Vec3>& points, std::uint8_t flags = 0);
+
+  // Moves every vertex to new_positions[i], rebuilds the Delaunay
+  // triangulation and carries f over by barycentric interpolation in the old
+  // one (§3.3, "Linear Solver"). Vertices keep their indices.
+  void move_vertices(const std::vector<Vec3>& new_positions);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Radius-edge ratio of a tet: circumradius / shortest edge (sqrt(6)/4 for the
+// regular tet).
+double radius_edge_ratio(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+}  // namespace pdd

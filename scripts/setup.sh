@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs the Debian packages pdd needs, skipping those already installed.
+# Idempotent; needs root (or sudo) for apt-get.
+set -euo pipefail
+
+packages=(
+  cmake g++ make
+  libcgal-dev libeigen3-dev libspectra-dev
+  libsuitesparse-dev libopenblas-dev libtbb-dev
+  libcli11-dev libgtest-dev libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages already installed"
+  exit 0
+fi
+
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+echo "setup: installing ${missing[*]}"
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,155 @@
+// The discrete domain: a CGAL Delaunay triangulation with dense vertex
+// indices, a per-vertex function f and per-vertex flags.
+#include <pdd/domain.h>
+
+#include "domain/domain_impl.h"
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+
+namespace pdd {
+
+Domain::Domain() : impl_(std::make_unique<Impl>()) {}
+
+Domain::Domain(const std::vector<Vec3>& points, const std::vector<std::uint8_t>& flags)
+    : impl_(std::make_unique<Impl>()) {
+  if (!flags.empty() && flags.size() != points.size())
+    throw std::invalid_argument("Domain: one flag per point is required");
+  const std::vector<int> original = impl_->build(points);
+  impl_->f.assign(original.size(), 0.0);
+  impl_->flags.assign(original.size(), 0);
+  if (!flags.empty())
+    for (std::size_t i = 0; i < original.size(); ++i) impl_->flags[i] = flags[original[i]];
+  impl_->fit_sphere_to_vertices();
+}
+
+Domain::Domain(Domain&&) noexcept = default;
+Domain& Domain::operator=(Domain&&) noexcept = default;
+Domain::~Domain() = default;
+
+Domain::Domain(const Domain& other) : impl_(std::make_unique<Impl>()) {
+  impl_->dt = other.impl_->dt;
+  impl_->f = other.impl_->f;
+  impl_->flags = other.impl_->flags;
+  impl_->center = other.impl_->center;
+  impl_->radius = other.impl_->radius;
+  impl_->reindex();
+}
+
+Domain& Domain::operator=(const Domain& other) {
+  if (this != &other) *this = Domain(other);
+  return *this;
+}
+
+std::size_t Domain::num_vertices() const { return impl_->vertices.size(); }
+std::size_t Domain::num_tets() const { return impl_->tets.size(); }
+const std::vector<Vec3>& Domain::vertices() const { return impl_->vertices; }
+const std::vector<std::array<int, 4>>& Domain::tets() const { return impl_->tets; }
+const std::vector<std::array<int, 4>>& Domain::tet_neighbors() const { return impl_->neighbors; }
+TetMesh Domain::mesh() const { return TetMesh{impl_->vertices, impl_->tets}; }
+const std::vector<double>& Domain::f() const { return impl_->f; }
+
+void Domain::set_f(std::vector<double> values) {
+  if (values.size() != num_vertices())
+    throw std::invalid_argument("Domain::set_f: one value per vertex is required");
+  impl_->f = std::move(values);
+}
+
+const std::vector<std::uint8_t>& Domain::flags() const { return impl_->flags; }
+bool Domain::on_boundary_sphere(int vertex) const {
+  return impl_->flags[vertex] & kOnBoundarySphere;
+}
+Vec3 Domain::center() const { return impl_->center; }
+double Domain::radius() const { return impl_->radius; }
+
+Location Domain::locate(const Vec3& p) const {
+  Location loc;
+  const auto c = impl_->dt.locate(to_point(p));
+  if (c == Delaunay::Cell_handle() || impl_->dt.is_infinite(c)) return loc;
+  loc.tet = c->info();
+  loc.barycentric = Impl::barycentric(c, p);
+  return loc;
+}
+
+double Domain::interpolate(const Vec3& p, const std::vector<double>& values) const {
+  const auto c = impl_->dt.locate(to_point(p));
+  if (c == Delaunay::Cell_handle() || impl_->dt.is_infinite(c))
+    throw std::out_of_range("Domain::interpolate: point outside the domain");
+  return impl_->interpolate_in(c, p, values);
+}
+
+std::vector<int> Domain::insert(const std::vector<Vec3>& points, std::uint8_t flags) {
+  Impl& d = *impl_;
+  // Values are taken from the current interpolant before any insertion, so
+  // that the order of insertion does not change them.
+  std::vector<double> values(points.size());
+  std::vector<Delaunay::Cell_handle> where(points.size());
+  Delaunay::Cell_handle hint;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    where[i] = d.dt.locate(to_point(points[i]), hint);
+    if (where[i] == Delaunay::Cell_handle() || d.dt.is_infinite(where[i]))
+      throw std::invalid_argument("Domain::insert: point outside the domain");
+    values[i] = d.interpolate_in(where[i], points[i], d.f);
+    hint = where[i];
+  }
+  std::vector<int> added;
+  Delaunay::Vertex_handle last;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    Delaunay::Locate_type lt;
+    int li, lj;
+    const auto c = d.dt.locate(to_point(points[i]), lt, li, lj,
+                               last == Delaunay::Vertex_handle() ? Delaunay::Cell_handle()
+                                                                 : last->cell());
+    if (lt == Delaunay::VERTEX) continue;
+    const auto v = d.dt.insert(to_point(points[i]), lt, c, li, lj);
+    v->info() = static_cast<int>(d.f.size());
+    added.push_back(v->info());
+    d.f.push_back(values[i]);
+    d.flags.push_back(flags);
+    last = v;
+  }
+  d.reindex();
+  return added;
+}
+
+void Domain::move_vertices(const std::vector<Vec3>& new_positions) {
+  Impl& d = *impl_;
+  const std::size_t n = num_vertices();
+  if (new_positions.size() != n)
+    throw std::invalid_argument("Domain::move_vertices: one position per vertex is required");
+  // f at the new positions, interpolated in the old triangulation; a vertex
+  // that left the old domain keeps its value.
+  std::vector<double> f(n);
+  Delaunay::Cell_handle hint;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto c = d.dt.locate(to_point(new_positions[i]), hint);
+    if (c == Delaunay::Cell_handle() || d.dt.is_infinite(c)) {
+      f[i] = d.f[i];
+    } else {
+      f[i] = d.interpolate_in(c, new_positions[i], d.f);
+      hint = c;
+    }
+  }
+  Delaunay rebuilt;
+  std::vector<std::pair<detail::Point, int>> items;
+  items.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+    items.emplace_back(to_point(new_positions[i]), static_cast<int>(i));
+  rebuilt.insert(items.begin(), items.end());
+  if (rebuilt.number_of_vertices() != n)
+    throw std::invalid_argument("Domain::move_vertices: two vertices would coincide");
+  d.dt.swap(rebuilt);
+  d.f = std::move(f);
+  d.reindex();
+}
+
+double radius_edge_ratio(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Vec3 cc = to_vec(CGAL::circumcenter(to_point(a), to_point(b), to_point(c), to_point(d)));
+  const double shortest = std::sqrt(std::min({(a - b).squaredNorm(), (a - c).squaredNorm(),
+                                              (a - d).squaredNorm(), (b - c).squaredNorm(),
+                                              (b - d).squaredNorm(), (c - d).squaredNorm()}));
+  return (cc - a).norm() / shortest;
+}
+
+}  // namespace pdd

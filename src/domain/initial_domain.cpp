@@ -1,0 +1,154 @@
+// Initialization of the domain, §3.2: a loose sphere around the input,
+// sampled uniformly, then Delaunay refinement by circumcenter insertion.
+#include <pdd/domain.h>
+#include <pdd/errors.h>
+
+#include "domain/domain_impl.h"
+
+#include <CGAL/Min_sphere_of_points_d_traits_3.h>
+#include <CGAL/Min_sphere_of_spheres_d.h>
+
+#include <cmath>
+#include <queue>
+#include <string>
+
+namespace pdd {
+namespace {
+
+// n points spread uniformly on the sphere (c, r): the Fibonacci lattice,
+// deterministic and near-uniform for any n.
+std::vector<Vec3> fibonacci_sphere(const Vec3& c, double r, int n) {
+  const double golden_angle = M_PI * (3.0 - std::sqrt(5.0));
+  std::vector<Vec3> points;
+  points.reserve(n);
+  for (int i = 0; i < n; ++i) {
+    const double z = 1.0 - (2.0 * i + 1.0) / n;
+    const double rho = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const double phi = golden_angle * i;
+    points.push_back(c + r * Vec3(rho * std::cos(phi), rho * std::sin(phi), z));
+  }
+  return points;
+}
+
+// Smallest enclosing sphere of the input points (exact, CGAL).
+void bounding_sphere(const std::vector<Vec3>& points, Vec3& center, double& radius) {
+  using Traits = CGAL::Min_sphere_of_points_d_traits_3<detail::Kernel, double>;
+  std::vector<detail::Point> p;
+  p.reserve(points.size());
+  for (const Vec3& v : points) p.push_back(to_point(v));
+  CGAL::Min_sphere_of_spheres_d<Traits> ms(p.begin(), p.end());
+  auto it = ms.center_cartesian_begin();
+  center.x() = *it++;
+  center.y() = *it++;
+  center.z() = *it;
+  radius = ms.radius();
+}
+
+double cell_radius_edge(Delaunay::Cell_handle c) {
+  return radius_edge_ratio(to_vec(c->vertex(0)->point()), to_vec(c->vertex(1)->point()),
+                           to_vec(c->vertex(2)->point()), to_vec(c->vertex(3)->point()));
+}
+
+// A bad cell waiting in the refinement queue, identified by its vertices so
+// that a cell destroyed by an earlier insertion is recognized.
+struct BadCell {
+  double ratio;
+  long order;  // insertion order: ties broken deterministically
+  std::array<Delaunay::Vertex_handle, 4> v;
+  bool operator<(const BadCell& o) const {
+    return ratio != o.ratio ? ratio < o.ratio : order > o.order;
+  }
+};
+
+}  // namespace
+
+Domain Domain::initial(const PointSet& input, const DomainOptions& options,
+                       RefinementReport* report) {
+  if (input.points.empty()) throw InputError("initial domain: the point set is empty");
+  if (!(options.enlarge_ratio > 1.0))
+    throw InputError("initial domain: enlarge ratio must be > 1, got " +
+                     std::to_string(options.enlarge_ratio));
+  if (options.sphere_points < 4)
+    throw InputError("initial domain: at least 4 sphere points are needed, got " +
+                     std::to_string(options.sphere_points));
+  if (!(options.radius_edge_bound > 0))
+    throw InputError("initial domain: the radius-edge bound must be positive");
+
+  Vec3 c;
+  double r;
+  bounding_sphere(input.points, c, r);
+  if (!(r > 0)) throw InputError("initial domain: all points coincide");
+  const double R = options.enlarge_ratio * r;
+
+  Domain domain(fibonacci_sphere(c, R, options.sphere_points),
+                std::vector<std::uint8_t>(options.sphere_points, kOnBoundarySphere));
+  Impl& d = *domain.impl_;
+  d.center = c;
+  d.radius = R;
+
+  RefinementReport stats;
+  std::priority_queue<BadCell> queue;
+  long order = 0;
+  auto push_if_bad = [&](Delaunay::Cell_handle cell) {
+    if (d.dt.is_infinite(cell)) return;
+    const double ratio = cell_radius_edge(cell);
+    if (ratio > options.radius_edge_bound)
+      queue.push({ratio, order++, {cell->vertex(0), cell->vertex(1), cell->vertex(2), cell->vertex(3)}});
+  };
+  for (auto cell = d.dt.finite_cells_begin(); cell != d.dt.finite_cells_end(); ++cell)
+    push_if_bad(cell);
+
+  int inserted = 0;
+  std::vector<Delaunay::Cell_handle> star;
+  while (!queue.empty() && inserted < options.max_refinement_points) {
+    const BadCell bad = queue.top();
+    queue.pop();
+    Delaunay::Cell_handle cell;
+    if (!d.dt.is_cell(bad.v[0], bad.v[1], bad.v[2], bad.v[3], cell)) continue;
+
+    // The circumcenter if it lies inside the current hull and the ball;
+    // otherwise its projection on the sphere, which splits the boundary.
+    const Vec3 cc = to_vec(d.dt.dual(cell));
+    Vec3 p = cc;
+    std::uint8_t flag = 0;
+    Delaunay::Locate_type lt;
+    int li, lj;
+    Delaunay::Cell_handle where = d.dt.locate(to_point(p), lt, li, lj, cell);
+    if ((p - c).norm() >= R || d.dt.is_infinite(where)) {
+      p = c + R * (cc - c).normalized();
+      flag = kOnBoundarySphere;
+      const double circumradius = (cc - to_vec(cell->vertex(0)->point())).norm();
+      if ((p - cc).norm() >= circumradius) {  // would not destroy the bad cell
+        ++stats.skipped;
+        continue;
+      }
+      where = d.dt.locate(to_point(p), lt, li, lj, cell);
+    }
+    if (lt == Delaunay::VERTEX) {
+      ++stats.skipped;
+      continue;
+    }
+    // f is 0 everywhere on the initial domain: nothing to interpolate.
+    const auto v = d.dt.insert(to_point(p), lt, where, li, lj);
+    v->info() = static_cast<int>(d.f.size());
+    d.f.push_back(0.0);
+    d.flags.push_back(flag);
+    ++inserted;
+    ++(flag ? stats.inserted_boundary : stats.inserted_interior);
+    star.clear();
+    d.dt.incident_cells(v, std::back_inserter(star));
+    for (auto s : star) push_if_bad(s);
+  }
+  stats.skipped += static_cast<int>(queue.size());
+  d.reindex();
+
+  for (const auto& t : d.tets)
+    stats.worst_radius_edge =
+        std::max(stats.worst_radius_edge,
+                 radius_edge_ratio(d.vertices[t[0]], d.vertices[t[1]], d.vertices[t[2]],
+                                   d.vertices[t[3]]));
+  if (report) *report = stats;
+  return domain;
+}
+
+}  // namespace pdd
