@@ -1,29 +1,166 @@
 #include <pdd/domain.h>
+#include <pdd/errors.h>
 
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "support/shapes.h"
+
 namespace pdd {
 namespace {
 
-PointSet random_ball(int n, unsigned seed) {
+double signed_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  return (b - a).dot((c - a).cross(d - a)) / 6.0;
+}
+
+std::vector<Vec3> random_points_in_ball(int n, double radius, unsigned seed) {
   std::mt19937 rng(seed);
-  std::normal_distribution<double> g;
-  PointSet ps;
-  for (int i = 0; i < n; ++i) ps.points.push_back(Vec3(g(rng), g(rng), g(rng)).normalized());
-  return ps;
+  std::uniform_real_distribution<double> u(-radius, radius);
+  std::vector<Vec3> points;
+  while (static_cast<int>(points.size()) < n) {
+    const Vec3 p(u(rng), u(rng), u(rng));
+    if (p.norm() < radius) points.push_back(p);
+  }
+  return points;
 }
 
 TEST(InitialDomain, MeetsRadiusEdgeBoundAndContainsInput) {
-  const PointSet input = random_ball(500, 1);
+  const PointSet input = test::sample_ellipsoid(2000, Vec3(1.0, 0.6, 0.3));
   RefinementReport report;
   const Domain d = Domain::initial(input, {}, &report);
-  std::cout << "vertices " << d.num_vertices() << " tets " << d.num_tets() << " interior "
-            << report.inserted_interior << " boundary " << report.inserted_boundary
-            << " skipped " << report.skipped << " worst " << report.worst_radius_edge << "\n";
-  EXPECT_LE(report.worst_radius_edge, 1.3 + 1e-9);
+  EXPECT_EQ(report.remaining_bad, 0);
+  EXPECT_LE(report.worst_radius_edge, 1.3);
+  for (const auto& t : d.tets())
+    EXPECT_LE(radius_edge_ratio(d.vertices()[t[0]], d.vertices()[t[1]], d.vertices()[t[2]],
+                                d.vertices()[t[3]]),
+              1.3 + 1e-12);
   for (const Vec3& p : input.points) EXPECT_GE(d.locate(p).tet, 0);
+}
+
+TEST(InitialDomain, SphereVerticesLieOnTheEnlargedBoundingSphere) {
+  const PointSet input = test::sample_sphere(300, 2.0, Vec3(1, -1, 3));
+  DomainOptions options;
+  const Domain d = Domain::initial(input, options);
+  EXPECT_NEAR(d.radius(), 1.4 * 2.0, 1e-9);
+  EXPECT_LT((d.center() - Vec3(1, -1, 3)).norm(), 1e-9);
+  int on_sphere = 0;
+  for (std::size_t i = 0; i < d.num_vertices(); ++i) {
+    const double distance = (d.vertices()[i] - d.center()).norm();
+    if (d.on_boundary_sphere(static_cast<int>(i))) {
+      ++on_sphere;
+      EXPECT_NEAR(distance, d.radius(), 1e-9);
+    } else {
+      EXPECT_LT(distance, d.radius());
+    }
+  }
+  EXPECT_GE(on_sphere, options.sphere_points);
+}
+
+TEST(InitialDomain, IsDeterministic) {
+  const PointSet input = test::sample_torus(1500, 1.0, 0.3);
+  const Domain a = Domain::initial(input);
+  const Domain b = Domain::initial(input);
+  ASSERT_EQ(a.num_vertices(), b.num_vertices());
+  EXPECT_EQ(a.vertices(), b.vertices());
+  EXPECT_EQ(a.tets(), b.tets());
+}
+
+TEST(InitialDomain, RejectsBadOptions) {
+  const PointSet input = test::sample_sphere(50);
+  DomainOptions options;
+  options.enlarge_ratio = 0.9;
+  EXPECT_THROW(Domain::initial(input, options), InputError);
+  EXPECT_THROW(Domain::initial(PointSet{}), InputError);
+}
+
+TEST(Domain, TetsArePositivelyOrientedAndNeighborsAreSymmetric) {
+  const Domain d(random_points_in_ball(400, 1.0, 3));
+  ASSERT_GT(d.num_tets(), 0u);
+  const auto& v = d.vertices();
+  for (const auto& t : d.tets()) EXPECT_GT(signed_volume(v[t[0]], v[t[1]], v[t[2]], v[t[3]]), 0);
+  const auto& nb = d.tet_neighbors();
+  for (std::size_t t = 0; t < d.num_tets(); ++t)
+    for (int i = 0; i < 4; ++i) {
+      const int n = nb[t][i];
+      if (n < 0) continue;
+      int back = 0;
+      for (int j = 0; j < 4; ++j) back += nb[n][j] == static_cast<int>(t);
+      EXPECT_EQ(back, 1);
+    }
+}
+
+TEST(Domain, InterpolationReproducesLinearFunctionsExactly) {
+  Domain d(random_points_in_ball(500, 1.0, 4));
+  std::vector<double> f;
+  auto linear = [](const Vec3& p) { return 0.5 + 2 * p.x() - 3 * p.y() + 0.25 * p.z(); };
+  for (const Vec3& p : d.vertices()) f.push_back(linear(p));
+  for (const Vec3& q : random_points_in_ball(200, 0.5, 5)) {
+    const Location loc = d.locate(q);
+    ASSERT_GE(loc.tet, 0);
+    double sum = 0;
+    for (double w : loc.barycentric) {
+      EXPECT_GE(w, -1e-12);
+      sum += w;
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-12);
+    EXPECT_NEAR(d.interpolate(q, f), linear(q), 1e-12);
+  }
+  EXPECT_EQ(d.locate(Vec3(5, 5, 5)).tet, -1);
+  EXPECT_THROW(d.interpolate(Vec3(5, 5, 5), f), std::out_of_range);
+}
+
+TEST(Domain, InsertKeepsIndicesAndInterpolatesF) {
+  Domain d(random_points_in_ball(300, 1.0, 6));
+  std::vector<double> f;
+  for (const Vec3& p : d.vertices()) f.push_back(p.x() + 2 * p.z());
+  d.set_f(f);
+  const std::vector<Vec3> before = d.vertices();
+  const std::vector<Vec3> extra = random_points_in_ball(100, 0.6, 7);
+  const std::vector<int> added = d.insert(extra);
+  ASSERT_EQ(added.size(), extra.size());
+  for (std::size_t i = 0; i < before.size(); ++i) EXPECT_EQ(d.vertices()[i], before[i]);
+  for (std::size_t i = 0; i < added.size(); ++i) {
+    EXPECT_EQ(d.vertices()[added[i]], extra[i]);
+    EXPECT_NEAR(d.f()[added[i]], extra[i].x() + 2 * extra[i].z(), 1e-12);
+  }
+  // Re-inserting an existing vertex adds nothing.
+  EXPECT_TRUE(d.insert({before[0]}).empty());
+  EXPECT_THROW(d.insert({Vec3(9, 9, 9)}), std::invalid_argument);
+}
+
+TEST(Domain, MoveVerticesCarriesFOverByInterpolation) {
+  Domain d(random_points_in_ball(400, 1.0, 8));
+  std::vector<double> f;
+  for (const Vec3& p : d.vertices()) f.push_back(1 - p.y());
+  d.set_f(f);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> jitter(-0.01, 0.01);
+  std::vector<Vec3> moved = d.vertices();
+  for (std::size_t i = 0; i < moved.size(); ++i)
+    if (moved[i].norm() < 0.8) moved[i] += Vec3(jitter(rng), jitter(rng), jitter(rng));
+  d.move_vertices(moved);
+  EXPECT_EQ(d.vertices(), moved);
+  for (std::size_t i = 0; i < moved.size(); ++i) EXPECT_NEAR(d.f()[i], 1 - moved[i].y(), 1e-12);
+  const auto& v = d.vertices();
+  for (const auto& t : d.tets()) EXPECT_GT(signed_volume(v[t[0]], v[t[1]], v[t[2]], v[t[3]]), 0);
+
+  std::vector<Vec3> collapsed = d.vertices();
+  collapsed[1] = collapsed[0];
+  EXPECT_THROW(d.move_vertices(collapsed), std::invalid_argument);
+}
+
+TEST(Domain, CopyIsIndependent) {
+  Domain a(random_points_in_ball(100, 1.0, 10));
+  Domain b = a;
+  b.insert({Vec3(0.01, 0.02, 0.03)});
+  EXPECT_EQ(b.num_vertices(), a.num_vertices() + 1);
+  EXPECT_EQ(a.mesh().tets, a.tets());
+}
+
+TEST(RadiusEdgeRatio, RegularTetIsSqrt6Over4) {
+  const Vec3 a(1, 1, 1), b(1, -1, -1), c(-1, 1, -1), d(-1, -1, 1);
+  EXPECT_NEAR(radius_edge_ratio(a, b, c, d), std::sqrt(6.0) / 4.0, 1e-14);
 }
 
 }  // namespace

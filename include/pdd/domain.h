@@ -36,7 +36,7 @@ struct Location {
 struct RefinementReport {
   int inserted_interior = 0;  // circumcenters inserted inside the ball
   int inserted_boundary = 0;  // circumcenters projected onto the boundary sphere
-  int skipped = 0;            // bad cells left because no point could improve them
+  int remaining_bad = 0;      // tets still above the bound (boundary cells no point improves)
   double worst_radius_edge = 0;  // largest ratio among all tets after refinement
 };
 

@@ -118,16 +118,10 @@ Domain Domain::initial(const PointSet& input, const DomainOptions& options,
       p = c + R * (cc - c).normalized();
       flag = kOnBoundarySphere;
       const double circumradius = (cc - to_vec(cell->vertex(0)->point())).norm();
-      if ((p - cc).norm() >= circumradius) {  // would not destroy the bad cell
-        ++stats.skipped;
-        continue;
-      }
+      if ((p - cc).norm() >= circumradius) continue;  // would not destroy the bad cell
       where = d.dt.locate(to_point(p), lt, li, lj, cell);
     }
-    if (lt == Delaunay::VERTEX) {
-      ++stats.skipped;
-      continue;
-    }
+    if (lt == Delaunay::VERTEX) continue;
     // f is 0 everywhere on the initial domain: nothing to interpolate.
     const auto v = d.dt.insert(to_point(p), lt, where, li, lj);
     v->info() = static_cast<int>(d.f.size());
@@ -139,14 +133,14 @@ Domain Domain::initial(const PointSet& input, const DomainOptions& options,
     d.dt.incident_cells(v, std::back_inserter(star));
     for (auto s : star) push_if_bad(s);
   }
-  stats.skipped += static_cast<int>(queue.size());
   d.reindex();
 
-  for (const auto& t : d.tets)
-    stats.worst_radius_edge =
-        std::max(stats.worst_radius_edge,
-                 radius_edge_ratio(d.vertices[t[0]], d.vertices[t[1]], d.vertices[t[2]],
-                                   d.vertices[t[3]]));
+  for (const auto& t : d.tets) {
+    const double ratio = radius_edge_ratio(d.vertices[t[0]], d.vertices[t[1]], d.vertices[t[2]],
+                                           d.vertices[t[3]]);
+    stats.worst_radius_edge = std::max(stats.worst_radius_edge, ratio);
+    if (ratio > options.radius_edge_bound) ++stats.remaining_bad;
+  }
   if (report) *report = stats;
   return domain;
 }
