@@ -65,16 +65,16 @@ double Domain::radius() const { return impl_->radius; }
 
 Location Domain::locate(const Vec3& p) const {
   Location loc;
-  const auto c = impl_->dt.locate(to_point(p));
-  if (c == Delaunay::Cell_handle() || impl_->dt.is_infinite(c)) return loc;
+  const auto c = impl_->finite_cell_containing(p);
+  if (c == Delaunay::Cell_handle()) return loc;
   loc.tet = c->info();
   loc.barycentric = Impl::barycentric(c, p);
   return loc;
 }
 
 double Domain::interpolate(const Vec3& p, const std::vector<double>& values) const {
-  const auto c = impl_->dt.locate(to_point(p));
-  if (c == Delaunay::Cell_handle() || impl_->dt.is_infinite(c))
+  const auto c = impl_->finite_cell_containing(p);
+  if (c == Delaunay::Cell_handle())
     throw std::out_of_range("Domain::interpolate: point outside the domain");
   return impl_->interpolate_in(c, p, values);
 }
@@ -84,14 +84,12 @@ std::vector<int> Domain::insert(const std::vector<Vec3>& points, std::uint8_t fl
   // Values are taken from the current interpolant before any insertion, so
   // that the order of insertion does not change them.
   std::vector<double> values(points.size());
-  std::vector<Delaunay::Cell_handle> where(points.size());
   Delaunay::Cell_handle hint;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    where[i] = d.dt.locate(to_point(points[i]), hint);
-    if (where[i] == Delaunay::Cell_handle() || d.dt.is_infinite(where[i]))
+    hint = d.finite_cell_containing(points[i], hint);
+    if (hint == Delaunay::Cell_handle())
       throw std::invalid_argument("Domain::insert: point outside the domain");
-    values[i] = d.interpolate_in(where[i], points[i], d.f);
-    hint = where[i];
+    values[i] = d.interpolate_in(hint, points[i], d.f);
   }
   std::vector<int> added;
   Delaunay::Vertex_handle last;
@@ -123,8 +121,8 @@ void Domain::move_vertices(const std::vector<Vec3>& new_positions) {
   std::vector<double> f(n);
   Delaunay::Cell_handle hint;
   for (std::size_t i = 0; i < n; ++i) {
-    const auto c = d.dt.locate(to_point(new_positions[i]), hint);
-    if (c == Delaunay::Cell_handle() || d.dt.is_infinite(c)) {
+    const auto c = d.finite_cell_containing(new_positions[i], hint);
+    if (c == Delaunay::Cell_handle()) {
       f[i] = d.f[i];
     } else {
       f[i] = d.interpolate_in(c, new_positions[i], d.f);

@@ -63,6 +63,21 @@ struct Domain::Impl {
     for (const Vec3& v : vertices) radius = std::max(radius, (v - center).norm());
   }
 
+  // A finite cell whose closure contains p, or a null handle when p is
+  // outside the hull. Points on the hull can be located in an infinite cell:
+  // the finite cell across its finite facet contains them.
+  Delaunay::Cell_handle finite_cell_containing(const Vec3& p,
+                                               Delaunay::Cell_handle hint = {}) const {
+    Delaunay::Locate_type lt;
+    int li, lj;
+    Delaunay::Cell_handle c = dt.locate(to_point(p), lt, li, lj, hint);
+    if (c == Delaunay::Cell_handle() || lt == Delaunay::OUTSIDE_CONVEX_HULL ||
+        lt == Delaunay::OUTSIDE_AFFINE_HULL)
+      return {};
+    if (dt.is_infinite(c)) c = c->neighbor(c->index(dt.infinite_vertex()));
+    return c;
+  }
+
   // Barycentric coordinates of p in finite cell c.
   static std::array<double, 4> barycentric(Delaunay::Cell_handle c, const Vec3& p) {
     Vec3 q[4];

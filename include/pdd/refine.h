@@ -1,0 +1,48 @@
+// Adaptive refinement of the domain around the isosurface (§3.4): trisection
+// and bisection of the tets crossed by f = 0, driven by a sizing field.
+#pragma once
+
+#include <pdd/domain.h>
+#include <pdd/sizing.h>
+
+#include <random>
+
+namespace pdd {
+
+// Isofacet areas against their targets.
+struct IsofacetAreaStats {
+  int count = 0;
+  double mean_area = 0;
+  double max_area = 0;
+  double mean_ratio = 0;  // mean of r_t = area / s
+  double max_ratio = 0;
+};
+
+struct RefinementStats {
+  int crossing_tets = 0;
+  int trisected = 0;
+  int bisected = 0;
+  int left = 0;            // crossing tets not refined
+  int inserted_points = 0;
+  IsofacetAreaStats before;  // on the domain given
+  IsofacetAreaStats after;   // on the refined domain, with f interpolated
+};
+
+// The rules of §3.4 for one tet: r_t = area / target; returns 3 to trisect,
+// 2 to bisect, 0 to leave it. `draw` is a uniform sample in [0, 1) used in
+// rule 5 (bisect with probability (r_t - 1) / 3 when 1 < r_t < 4).
+int refinement_rule(const Isofacet& facet, double ratio, double draw);
+
+// One refinement pass: evaluates the sizing field on every crossing tet,
+// applies the rules, and inserts the trisection points (two per edge and the
+// centroid of each face, Figure 6b) or bisection points (the midpoint of
+// each edge whose ends have the same sign, Figure 6c-d). Points shared by
+// neighbouring tets are inserted once; points on the domain's boundary are
+// not inserted, so the boundary sphere stays as initialized; new vertices
+// get f by interpolation.
+RefinementStats refine(Domain& domain, const SizingField& sizing, std::mt19937_64& rng);
+
+IsofacetAreaStats isofacet_area_stats(const std::vector<Isofacet>& facets,
+                                      const std::vector<double>& targets);
+
+}  // namespace pdd

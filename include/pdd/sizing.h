@@ -1,0 +1,58 @@
+// Sizing fields (§3.4): the target area s of the isofacet in each tet crossed
+// by the isosurface. Uniform, curvature-adaptive, or supplied by the user.
+#pragma once
+
+#include <pdd/domain.h>
+#include <pdd/isofacet.h>
+#include <pdd/types.h>
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace pdd {
+
+class SizingField {
+ public:
+  virtual ~SizingField() = default;
+  // s(f_t) for each isofacet, in the order given.
+  virtual std::vector<double> target_areas(const Domain& domain,
+                                           const std::vector<Isofacet>& facets) const = 0;
+};
+
+// Area of the equilateral triangle of edge h: sqrt(3)/4 h^2.
+double area_for_edge_length(double h);
+
+// Average distance from an input point to its k nearest neighbours (CGAL).
+double average_spacing(const PointSet& input, int k = 6);
+
+// The default uniform target: triangles whose edge equals the input's
+// average spacing, so that the output follows the input's resolution.
+double default_target_area(const PointSet& input);
+
+// The same target area everywhere.
+std::unique_ptr<SizingField> uniform_sizing(double target_area);
+
+// Any callable from a position (the isofacet's centroid) to a target area.
+std::unique_ptr<SizingField> user_sizing(std::function<double(const Vec3&)> target_area_at);
+
+// Curvature-adaptive sizing of §3.4. Values <= 0 mean "derived from the
+// input" as described on each field.
+struct AdaptiveSizingOptions {
+  int neighbors = 16;        // k: jet-fitting neighbourhood and curvature look-up around an isofacet
+  int jet_degree = 2;        // degree of the fitted jet / Monge form
+  double gradation = 1.0;    // lambda of the mapping c' = ((c - c_min)/(c_max - c_min))^lambda ...
+  double tolerance = 0;      // d, distance tolerance; <= 0: chosen so that s(c_median) equals
+                             // default_target_area(input)
+  double min_area = 0;       // s_min; <= 0: default_target_area(input) / 16
+  double max_area = 0;       // s_max; <= 0: default_target_area(input) * 16
+};
+
+// Principal curvatures of the input by jet fitting on k nearest neighbours
+// (CGAL Monge_via_jet_fitting); returns max(|k1|, |k2|) per point.
+std::vector<double> max_abs_curvature(const PointSet& input, int neighbors, int jet_degree);
+
+std::unique_ptr<SizingField> adaptive_sizing(const PointSet& input,
+                                             const AdaptiveSizingOptions& options = {});
+
+}  // namespace pdd

@@ -1,0 +1,24 @@
+// k-nearest-neighbour queries over a fixed set of points (CGAL kd-tree).
+// Private to src/. Queries are const and may run concurrently.
+#pragma once
+
+#include <pdd/types.h>
+
+#include <memory>
+#include <vector>
+
+namespace pdd::detail {
+
+class NearestNeighbors {
+ public:
+  explicit NearestNeighbors(const std::vector<Vec3>& points);
+  ~NearestNeighbors();
+  // Indices of the k points nearest to q, nearest first (fewer if the set is smaller).
+  std::vector<int> query(const Vec3& q, int k) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pdd::detail

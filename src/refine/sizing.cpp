@@ -1,0 +1,175 @@
+// Sizing fields of §3.4: uniform, user-supplied and curvature-adaptive.
+#include <pdd/errors.h>
+#include <pdd/sizing.h>
+
+#include "common/nearest_neighbors.h"
+
+#include <CGAL/Monge_via_jet_fitting.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/compute_average_spacing.h>
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace pdd {
+namespace {
+
+class UniformSizing : public SizingField {
+ public:
+  explicit UniformSizing(double area) : area_(area) {}
+  std::vector<double> target_areas(const Domain&, const std::vector<Isofacet>& facets) const override {
+    return std::vector<double>(facets.size(), area_);
+  }
+
+ private:
+  double area_;
+};
+
+class UserSizing : public SizingField {
+ public:
+  explicit UserSizing(std::function<double(const Vec3&)> at) : at_(std::move(at)) {}
+  std::vector<double> target_areas(const Domain&, const std::vector<Isofacet>& facets) const override {
+    std::vector<double> out;
+    out.reserve(facets.size());
+    for (const Isofacet& a : facets) {
+      const double s = at_(a.centroid);
+      if (!(s > 0) || !std::isfinite(s))
+        throw InputError("sizing field: the user's target area must be positive and finite, got " +
+                         std::to_string(s));
+      out.push_back(s);
+    }
+    return out;
+  }
+
+ private:
+  std::function<double(const Vec3&)> at_;
+};
+
+// Curvature-adaptive sizing, §3.4 "Adaptive Sizing Field".
+class AdaptiveSizing : public SizingField {
+ public:
+  AdaptiveSizing(const PointSet& input, const AdaptiveSizingOptions& options)
+      : options_(options),
+        curvature_(max_abs_curvature(input, options.neighbors, options.jet_degree)),
+        neighbors_(input.points) {
+    c_min_ = *std::min_element(curvature_.begin(), curvature_.end());
+    c_max_ = *std::max_element(curvature_.begin(), curvature_.end());
+    const double base = default_target_area(input);
+    if (options_.min_area <= 0) options_.min_area = base / 16;
+    if (options_.max_area <= 0) options_.max_area = base * 16;
+    if (options_.tolerance <= 0) {
+      // s(c) ~ 8 sqrt(3) d / c for small d: pick d so that s(c_median) = base.
+      std::vector<double> sorted = curvature_;
+      std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+      const double c_median = std::max(sorted[sorted.size() / 2], 1e-12);
+      options_.tolerance = base * c_median / (8 * std::sqrt(3.0));
+    }
+  }
+
+  std::vector<double> target_areas(const Domain& domain,
+                                   const std::vector<Isofacet>& facets) const override {
+    // Curvature per crossing tet: max over the k nearest input points.
+    std::vector<double> c(facets.size());
+    tbb::parallel_for(std::size_t(0), facets.size(), [&](std::size_t i) {
+      double m = 0;
+      for (int j : neighbors_.query(facets[i].centroid, options_.neighbors))
+        m = std::max(m, curvature_[j]);
+      c[i] = m;
+    });
+    // Smoothed like the ASAP volume field (average over the tet and its
+    // crossing neighbours), then clipped to [c_min, c_max].
+    std::vector<int> facet_of_tet(domain.num_tets(), -1);
+    for (std::size_t i = 0; i < facets.size(); ++i) facet_of_tet[facets[i].tet] = static_cast<int>(i);
+    std::vector<double> s(facets.size());
+    const double d = options_.tolerance;
+    for (std::size_t i = 0; i < facets.size(); ++i) {
+      double sum = c[i];
+      int n = 1;
+      for (int nb : domain.tet_neighbors()[facets[i].tet])
+        if (nb >= 0 && facet_of_tet[nb] >= 0) {
+          sum += c[facet_of_tet[nb]];
+          ++n;
+        }
+      const double smoothed = std::clamp(sum / n, c_min_, c_max_);
+      // Gradation mapping c' with exponent lambda.
+      const double range = c_max_ - c_min_;
+      const double mapped =
+          range > 0 ? std::pow((smoothed - c_min_) / range, options_.gradation) * range + c_min_
+                    : smoothed;
+      // s = 4 sqrt(3) (2d/c - d^2), clipped to [s_min, s_max].
+      const double target = mapped > 0 ? 4 * std::sqrt(3.0) * (2 * d / mapped - d * d)
+                                       : options_.max_area;
+      s[i] = std::clamp(target, options_.min_area, options_.max_area);
+    }
+    return s;
+  }
+
+ private:
+  AdaptiveSizingOptions options_;
+  std::vector<double> curvature_;
+  detail::NearestNeighbors neighbors_;
+  double c_min_ = 0, c_max_ = 0;
+};
+
+}  // namespace
+
+double area_for_edge_length(double h) { return std::sqrt(3.0) / 4.0 * h * h; }
+
+double average_spacing(const PointSet& input, int k) {
+  using Point = CGAL::Simple_cartesian<double>::Point_3;
+  std::vector<Point> points;
+  points.reserve(input.size());
+  for (const Vec3& p : input.points) points.emplace_back(p.x(), p.y(), p.z());
+  return CGAL::compute_average_spacing<CGAL::Sequential_tag>(points, k);
+}
+
+double default_target_area(const PointSet& input) {
+  return area_for_edge_length(average_spacing(input));
+}
+
+std::unique_ptr<SizingField> uniform_sizing(double target_area) {
+  if (!(target_area > 0) || !std::isfinite(target_area))
+    throw InputError("sizing field: the target area must be positive and finite, got " +
+                     std::to_string(target_area));
+  return std::make_unique<UniformSizing>(target_area);
+}
+
+std::unique_ptr<SizingField> user_sizing(std::function<double(const Vec3&)> target_area_at) {
+  return std::make_unique<UserSizing>(std::move(target_area_at));
+}
+
+std::vector<double> max_abs_curvature(const PointSet& input, int neighbors, int jet_degree) {
+  using Kernel = CGAL::Simple_cartesian<double>;
+  using Fitting = CGAL::Monge_via_jet_fitting<Kernel>;
+  const int needed = (jet_degree + 1) * (jet_degree + 2) / 2;
+  if (neighbors < needed)
+    throw InputError("adaptive sizing: jet fitting of degree " + std::to_string(jet_degree) +
+                     " needs at least " + std::to_string(needed) + " neighbours, got " +
+                     std::to_string(neighbors));
+  if (static_cast<int>(input.size()) < neighbors)
+    throw InputError("adaptive sizing: " + std::to_string(neighbors) +
+                     " neighbours requested but the input has only " +
+                     std::to_string(input.size()) + " points");
+  const detail::NearestNeighbors knn(input.points);
+  std::vector<double> curvature(input.size());
+  tbb::parallel_for(std::size_t(0), input.size(), [&](std::size_t i) {
+    std::vector<Kernel::Point_3> local;
+    for (int j : knn.query(input.points[i], neighbors))
+      local.emplace_back(input.points[j].x(), input.points[j].y(), input.points[j].z());
+    Fitting fitting;
+    const Fitting::Monge_form monge = fitting(local.begin(), local.end(), jet_degree, 2);
+    curvature[i] = std::max(std::abs(monge.principal_curvatures(0)),
+                            std::abs(monge.principal_curvatures(1)));
+  });
+  return curvature;
+}
+
+std::unique_ptr<SizingField> adaptive_sizing(const PointSet& input,
+                                             const AdaptiveSizingOptions& options) {
+  return std::make_unique<AdaptiveSizing>(input, options);
+}
+
+}  // namespace pdd
