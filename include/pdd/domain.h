@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -91,6 +92,14 @@ class Domain {
   // (points that coincide with an existing vertex are not inserted and are
   // not returned). Points outside the domain are an std::invalid_argument.
   std::vector<int> insert(const std::vector<Vec3>& points, std::uint8_t flags = 0);
+
+  // Delaunay refinement by circumcenter insertion (worst tet first) until
+  // every tet has radius-edge ratio <= radius_edge_bound and circumradius <=
+  // max_circumradius, or max_points were inserted. A circumcenter outside the
+  // domain sphere (or the hull) is projected onto the sphere. New vertices get
+  // f by interpolation.
+  RefinementReport delaunay_refine(double radius_edge_bound, int max_points,
+                                   double max_circumradius = std::numeric_limits<double>::infinity());
 
   // Moves every vertex to new_positions[i], rebuilds the Delaunay
   // triangulation and carries f over by barycentric interpolation in the old

@@ -44,6 +44,11 @@ void bounding_sphere(const std::vector<Vec3>& points, Vec3& center, double& radi
   radius = ms.radius();
 }
 
+double circumradius(Delaunay::Cell_handle c) {
+  return std::sqrt(CGAL::squared_radius(c->vertex(0)->point(), c->vertex(1)->point(),
+                                        c->vertex(2)->point(), c->vertex(3)->point()));
+}
+
 double cell_radius_edge(Delaunay::Cell_handle c) {
   return radius_edge_ratio(to_vec(c->vertex(0)->point()), to_vec(c->vertex(1)->point()),
                            to_vec(c->vertex(2)->point()), to_vec(c->vertex(3)->point()));
@@ -86,13 +91,22 @@ Domain Domain::initial(const PointSet& input, const DomainOptions& options,
   d.center = c;
   d.radius = R;
 
+  const RefinementReport stats =
+      domain.delaunay_refine(options.radius_edge_bound, options.max_refinement_points);
+  if (report) *report = stats;
+  return domain;
+}
+
+RefinementReport Domain::delaunay_refine(double radius_edge_bound, int max_points,
+                                         double max_circumradius) {
+  Impl& d = *impl_;
   RefinementReport stats;
   std::priority_queue<BadCell> queue;
   long order = 0;
   auto push_if_bad = [&](Delaunay::Cell_handle cell) {
     if (d.dt.is_infinite(cell)) return;
     const double ratio = cell_radius_edge(cell);
-    if (ratio > options.radius_edge_bound)
+    if (ratio > radius_edge_bound || circumradius(cell) > max_circumradius)
       queue.push({ratio, order++, {cell->vertex(0), cell->vertex(1), cell->vertex(2), cell->vertex(3)}});
   };
   for (auto cell = d.dt.finite_cells_begin(); cell != d.dt.finite_cells_end(); ++cell)
@@ -100,7 +114,7 @@ Domain Domain::initial(const PointSet& input, const DomainOptions& options,
 
   int inserted = 0;
   std::vector<Delaunay::Cell_handle> star;
-  while (!queue.empty() && inserted < options.max_refinement_points) {
+  while (!queue.empty() && inserted < max_points) {
     const BadCell bad = queue.top();
     queue.pop();
     Delaunay::Cell_handle cell;
@@ -114,18 +128,25 @@ Domain Domain::initial(const PointSet& input, const DomainOptions& options,
     Delaunay::Locate_type lt;
     int li, lj;
     Delaunay::Cell_handle where = d.dt.locate(to_point(p), lt, li, lj, cell);
-    if ((p - c).norm() >= R || d.dt.is_infinite(where)) {
-      p = c + R * (cc - c).normalized();
+    if ((p - d.center).norm() >= d.radius || d.dt.is_infinite(where)) {
+      p = d.center + d.radius * (cc - d.center).normalized();
       flag = kOnBoundarySphere;
-      const double circumradius = (cc - to_vec(cell->vertex(0)->point())).norm();
-      if ((p - cc).norm() >= circumradius) continue;  // would not destroy the bad cell
+      if ((p - cc).norm() >= circumradius(cell)) continue;  // would not destroy the bad cell
       where = d.dt.locate(to_point(p), lt, li, lj, cell);
     }
     if (lt == Delaunay::VERTEX) continue;
-    // f is 0 everywhere on the initial domain: nothing to interpolate.
+    // f at the new vertex: interpolated, or for a boundary point outside the
+    // hull, the mean over the bad cell's vertices.
+    const Delaunay::Cell_handle finite = d.finite_cell_containing(p, where);
+    double value = 0;
+    if (finite != Delaunay::Cell_handle()) {
+      value = d.interpolate_in(finite, p, d.f);
+    } else {
+      for (int i = 0; i < 4; ++i) value += 0.25 * d.f[cell->vertex(i)->info()];
+    }
     const auto v = d.dt.insert(to_point(p), lt, where, li, lj);
     v->info() = static_cast<int>(d.f.size());
-    d.f.push_back(0.0);
+    d.f.push_back(value);
     d.flags.push_back(flag);
     ++inserted;
     ++(flag ? stats.inserted_boundary : stats.inserted_interior);
@@ -135,14 +156,12 @@ Domain Domain::initial(const PointSet& input, const DomainOptions& options,
   }
   d.reindex();
 
-  for (const auto& t : d.tets) {
-    const double ratio = radius_edge_ratio(d.vertices[t[0]], d.vertices[t[1]], d.vertices[t[2]],
-                                           d.vertices[t[3]]);
+  for (const auto& cell : d.cells) {
+    const double ratio = cell_radius_edge(cell);
     stats.worst_radius_edge = std::max(stats.worst_radius_edge, ratio);
-    if (ratio > options.radius_edge_bound) ++stats.remaining_bad;
+    if (ratio > radius_edge_bound || circumradius(cell) > max_circumradius) ++stats.remaining_bad;
   }
-  if (report) *report = stats;
-  return domain;
+  return stats;
 }
 
 }  // namespace pdd
