@@ -1,0 +1,67 @@
+// The per-format readers and writers behind pdd/io.h. Readers return what the
+// file holds, with the line of every record for the messages of validation;
+// writers stream into an std::ostream that write_atomically provides.
+//
+// The readers are written by hand rather than built on CGAL's (CGAL/IO/PLY.h,
+// read_XYZ, read_OFF, read_OBJ): those report a failure as `false` plus, at
+// best, a text on std::cerr, so they cannot name the line or the record at
+// fault; they also accept some bad input silently (a missing normal becomes a
+// null vector in read_XYZ, extra values on a line are ignored).
+#pragma once
+
+#include <pdd/io.h>
+
+#include <array>
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace pdd::io {
+
+// The vertices a file holds, before validation.
+struct RawVertices {
+  std::vector<Vec3> points;
+  std::vector<Vec3> normals;       // empty, or one per point
+  std::vector<std::size_t> lines;  // line of each point in a text file; empty for binary files
+};
+
+// A mesh as a file holds it: faces are 0-based but not yet range-checked.
+struct RawMesh {
+  RawVertices vertices;
+  std::vector<std::array<std::int64_t, 3>> faces;
+  std::vector<std::size_t> face_lines;  // line of each face in a text file; empty for binary files
+};
+
+// Whether a reader reads the faces too or stops after the vertices.
+enum class Content { kVertices, kVerticesAndFaces };
+
+RawMesh read_ply(const std::string& path, const std::string& data, Content content);
+RawMesh read_off(const std::string& path, const std::string& data, Content content);
+// With Content::kVertices, "vn" normals are paired with "v" vertices in order
+// and any other number of them than one per vertex is an error.
+RawMesh read_obj(const std::string& path, const std::string& data, Content content);
+RawVertices read_xyz(const std::string& path, const std::string& data);
+
+// validate_points with the line of each point (empty: number points instead).
+PointSet validate_points_at(PointSet points, const std::string& source,
+                            const std::vector<std::size_t>& lines, ValidationReport* report,
+                            const ValidationOptions& options);
+
+// Writers. `normals` is empty or one per vertex; faces index `vertices` and
+// are checked as they are written (std::invalid_argument when out of range).
+using Faces = std::vector<std::array<int, 3>>;
+void write_ply(std::ostream& out, const std::vector<Vec3>& vertices,
+               const std::vector<Vec3>& normals, const Faces* faces, bool ascii);
+void write_off(std::ostream& out, const std::vector<Vec3>& vertices,
+               const std::vector<Vec3>& normals, const Faces& faces);
+void write_obj(std::ostream& out, const std::vector<Vec3>& vertices,
+               const std::vector<Vec3>& normals, const Faces& faces);
+void write_xyz(std::ostream& out, const std::vector<Vec3>& points,
+               const std::vector<Vec3>& normals);
+
+// Throws std::invalid_argument when face `index` refers to a vertex outside
+// [0, num_vertices).
+void check_face(const std::array<int, 3>& face, std::size_t index, std::size_t num_vertices);
+
+}  // namespace pdd::io

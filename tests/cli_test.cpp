@@ -1,0 +1,191 @@
+// The `pdd` command line, run as a separate process: exit codes (0 ok, 1
+// runtime failure, 2 bad usage or input), one-line error messages, and no
+// output file left behind by a failed run.
+#include <gtest/gtest.h>
+#include <pdd/io.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "support/shapes.h"
+
+namespace pdd {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int code = -1;
+  std::string out;
+  std::string err;
+};
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("pdd_cli_test_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  static std::string slurp(const std::string& file) {
+    std::ifstream in(file);
+    return std::string((std::istreambuf_iterator<char>(in)), {});
+  }
+
+  // Runs `pdd <args>` with stdout and stderr captured in files.
+  Outcome pdd(const std::string& args) const {
+    const std::string out = (dir_ / "stdout.txt").string();
+    const std::string err = (dir_ / "stderr.txt").string();
+    const std::string command =
+        "'" + std::string(PDD_BINARY) + "' " + args + " >'" + out + "' 2>'" + err + "'";
+    const int status = std::system(command.c_str());
+    Outcome run;
+    run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    run.out = slurp(out);
+    run.err = slurp(err);
+    fs::remove(out);
+    fs::remove(err);
+    return run;
+  }
+
+  // Entries of the test folder, hidden temporaries included.
+  std::vector<std::string> entries() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+  fs::path dir_;
+};
+
+std::size_t lines_of(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+TEST_F(CliTest, HelpAndVersionSucceed) {
+  const Outcome help = pdd("--help");
+  EXPECT_EQ(help.code, 0);
+  EXPECT_NE(help.out.find("reconstruct"), std::string::npos) << help.out;
+
+  const Outcome version = pdd("--version");
+  EXPECT_EQ(version.code, 0);
+  EXPECT_NE(version.out.find(std::string("pdd ") + PDD_VERSION), std::string::npos) << version.out;
+
+  // The options are named in the paper's terms, with their defaults.
+  const Outcome reconstruct = pdd("reconstruct --help");
+  EXPECT_EQ(reconstruct.code, 0);
+  for (const char* fragment :
+       {"--solver", "{ssd,poisson,spectral}=ssd", "--enlarge-ratio", "=1.4", "--sphere-points",
+        "=100", "--radius-edge", "=1.3", "--lambda-asap", "--lambda-mid-edge", "--damping",
+        "--seed", "--ascii", "--domain", "-o,--output"}) {
+    EXPECT_NE(reconstruct.out.find(fragment), std::string::npos) << fragment;
+  }
+}
+
+TEST_F(CliTest, BadUsageExitsWithTwo) {
+  EXPECT_EQ(pdd("").code, 2);
+  EXPECT_EQ(pdd("frobnicate").code, 2);
+  EXPECT_EQ(pdd("reconstruct").code, 2);
+  EXPECT_EQ(pdd("reconstruct in.ply").code, 2);  // no -o
+  const Outcome solver = pdd("reconstruct in.ply -o out.ply --solver octree");
+  EXPECT_EQ(solver.code, 2);
+  EXPECT_NE(solver.err.find("octree"), std::string::npos) << solver.err;
+  EXPECT_EQ(pdd("reconstruct in.ply -o out.ply --enlarge-ratio 0.9").code, 2);
+  EXPECT_EQ(pdd("reconstruct in.ply -o out.ply --sphere-points many").code, 2);
+}
+
+TEST_F(CliTest, MissingInputIsOneLineNamingTheFile) {
+  const Outcome run = pdd("reconstruct '" + path("absent.ply") + "' -o '" + path("out.ply") + "'");
+  EXPECT_EQ(run.code, 2);
+  EXPECT_EQ(lines_of(run.err), 1u) << run.err;
+  EXPECT_EQ(run.err, "pdd: error: " + path("absent.ply") + ": no such file\n");
+  EXPECT_TRUE(entries().empty());
+}
+
+TEST_F(CliTest, MalformedInputExitsWithTwo) {
+  std::ofstream(path("bad.xyz")) << "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 zero 0 0 1\n0 0 1 0 0 1\n";
+  const Outcome run = pdd("reconstruct '" + path("bad.xyz") + "' -o '" + path("out.ply") + "'");
+  EXPECT_EQ(run.code, 2);
+  EXPECT_EQ(lines_of(run.err), 1u) << run.err;
+  EXPECT_NE(run.err.find(path("bad.xyz") + ": line 3: 'zero' is not a number"), std::string::npos)
+      << run.err;
+  EXPECT_FALSE(fs::exists(path("out.ply")));
+}
+
+TEST_F(CliTest, DegenerateInputOrMissingNormalsExitWithTwo) {
+  std::ofstream(path("flat.xyz")) << "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n1 1 0 0 0 1\n";
+  const Outcome flat = pdd("reconstruct '" + path("flat.xyz") + "' -o '" + path("out.ply") + "'");
+  EXPECT_EQ(flat.code, 2);
+  EXPECT_NE(flat.err.find("lie in one plane"), std::string::npos) << flat.err;
+
+  PointSet bare = test::sample_sphere(50);
+  bare.normals.clear();
+  write_points(path("bare.xyz"), bare);
+  const Outcome run =
+      pdd("reconstruct '" + path("bare.xyz") + "' -o '" + path("out.ply") + "' --solver poisson");
+  EXPECT_EQ(run.code, 2);
+  EXPECT_EQ(lines_of(run.err), 1u) << run.err;
+  EXPECT_NE(run.err.find(path("bare.xyz") + ": the points have no normals; the Poisson solver"),
+            std::string::npos)
+      << run.err;
+  EXPECT_FALSE(fs::exists(path("out.ply")));
+}
+
+TEST_F(CliTest, BadOutputIsRefusedBeforeReading) {
+  // The input does not exist: the output's problem is reported first.
+  const Outcome stl = pdd("reconstruct '" + path("absent.ply") + "' -o '" + path("out.stl") + "'");
+  EXPECT_EQ(stl.code, 2);
+  EXPECT_NE(stl.err.find(path("out.stl") + ": unknown extension '.stl'"), std::string::npos)
+      << stl.err;
+  const Outcome folder =
+      pdd("reconstruct '" + path("absent.ply") + "' -o '" + path("no/out.ply") + "'");
+  EXPECT_EQ(folder.code, 2);
+  EXPECT_NE(folder.err.find("does not exist"), std::string::npos) << folder.err;
+  const Outcome domain = pdd("reconstruct '" + path("absent.ply") + "' -o '" + path("out.ply") +
+                             "' --domain '" + path("d.vtk") + "'");
+  EXPECT_EQ(domain.code, 2);
+  EXPECT_NE(domain.err.find(path("d.vtk") + ": unknown extension"), std::string::npos)
+      << domain.err;
+}
+
+TEST_F(CliTest, ValidInputStopsAtTheMissingPipelineLeavingNoFile) {
+  PointSet points = test::sample_sphere(200);
+  points.points.push_back(points.points[5]);
+  points.normals.push_back(points.normals[5]);
+  points.points.push_back(points.points[9]);
+  points.normals.push_back(points.normals[9]);
+  write_points(path("in.ply"), points);
+  const Outcome run = pdd("reconstruct '" + path("in.ply") + "' -o '" + path("out.ply") +
+                          "' --domain '" + path("d.vtu") + "'");
+  EXPECT_EQ(run.code, 1);
+  EXPECT_NE(run.err.find("pdd: warning: " + path("in.ply") + ": merged 2 duplicate points"),
+            std::string::npos)
+      << run.err;
+  EXPECT_NE(
+      run.err.find("pdd: error: reconstruct: the progressive pipeline is not implemented yet\n"),
+      std::string::npos)
+      << run.err;
+  EXPECT_EQ(entries(), std::vector<std::string>{"in.ply"});
+
+  // The bundled scan reads and validates too.
+  const Outcome kitten = pdd("reconstruct '" + std::string(PDD_SOURCE_DIR) +
+                             "/data/kitten_scan.ply' -o '" + path("kitten.off") + "'");
+  EXPECT_EQ(kitten.code, 1);
+  EXPECT_EQ(kitten.err,
+            "pdd: error: reconstruct: the progressive pipeline is not implemented yet\n");
+  EXPECT_EQ(entries(), std::vector<std::string>{"in.ply"});
+}
+
+}  // namespace
+}  // namespace pdd
