@@ -1,0 +1,44 @@
+// Marching tetrahedra (§2.1, §3.4): the isosurface f = isovalue of a
+// piecewise-linear function given at the vertices of a tetrahedral mesh.
+#pragma once
+
+#include <pdd/types.h>
+
+#include <array>
+#include <vector>
+
+namespace pdd {
+
+struct IsoSurface {
+  TriangleMesh mesh;           // outward-facing triangles (f < 0 inside)
+  std::vector<int> facet_tet;  // for each face: the index of the tet it came from
+  std::vector<std::array<int, 2>>
+      vertex_edge;  // for each isovertex: the domain edge (a < b) it lies on
+};
+
+// Marching tetrahedra on a piecewise-linear f over the tets (§2.1, §3.4).
+//
+// - A tet whose vertices change sign yields one triangle (1/3 case) or a
+//   quadrangle split along its shortest diagonal into two triangles (2/2
+//   case, §3.4); both triangles of a quadrangle carry the same facet_tet.
+// - One isovertex per crossing edge, shared by every facet around that edge;
+//   isovertices are numbered in order of first appearance when scanning the
+//   tets in order, so the output depends only on the input.
+// - Symbolic perturbation: a value equal to the isovalue counts as positive
+//   (outside). The surface is that of a generic f, hence always edge-manifold
+//   and closed wherever it does not reach the boundary of the mesh. On an
+//   edge from f(a) < isovalue to f(b) >= isovalue the isovertex is at
+//   parameter t = (isovalue - f(a)) / (f(b) - f(a)) in (0, 1]; t = 1 (the
+//   isovertex sits exactly on b) when f(b) == isovalue. Several isovertices
+//   may then coincide at b and some triangles have zero area: the geometry is
+//   degenerate there but the connectivity stays that of a manifold.
+// - Each triangle faces from the negative vertices of its tet to the positive
+//   ones (outward: towards increasing f). This relies on the TetMesh contract
+//   that every tet is positively oriented; it is decided combinatorially, so
+//   it holds for degenerate triangles too.
+//
+// Throws std::invalid_argument if f does not have one finite value per vertex.
+IsoSurface marching_tetrahedra(const TetMesh& mesh, const std::vector<double>& f,
+                               double isovalue = 0.0);
+
+}  // namespace pdd
