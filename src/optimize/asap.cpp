@@ -1,0 +1,102 @@
+// The as-similar-as-possible (ASAP) term of §3.3, Eqs. (2)-(7): each tet is
+// pulled towards the similar copy of the regular tetrahedron that fits it
+// best, scaled to its smoothed volume.
+#include "optimize/energy_terms.h"
+
+#include <Eigen/SVD>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+namespace pdd::optimize_detail {
+namespace {
+
+// t': the centered regular tetrahedron with unit edges, positively oriented
+// like every tet of the domain, (v1 - v0) . ((v2 - v0) x (v3 - v0)) > 0, so
+// that corner i of t' is matched to corner i of t by a rotation.
+const std::array<Vec3, 4>& reference_tet() {
+  static const std::array<Vec3, 4> t = [] {
+    const double s = 1.0 / (2.0 * std::sqrt(2.0));
+    return std::array<Vec3, 4>{Vec3(s, s, s), Vec3(-s, s, -s), Vec3(s, -s, -s), Vec3(-s, -s, s)};
+  }();
+  return t;
+}
+const double kReferenceVolume = 1.0 / (6.0 * std::sqrt(2.0));  // vol(t')
+
+double signed_volume(const std::array<Vec3, 4>& v) {
+  return (v[1] - v[0]).dot((v[2] - v[0]).cross(v[3] - v[0])) / 6.0;
+}
+
+// The corners c(t) + S* v_{t'_i} - c(t) = S* v_{t'_i} of Eq. (7), i.e. the
+// target of each centered corner, for a tet whose smoothed volume is
+// `smoothed_volume`.
+std::array<Vec3, 4> asap_targets(const std::array<Vec3, 4>& v, double smoothed_volume) {
+  const auto& ref = reference_tet();
+  const Vec3 center = 0.25 * (v[0] + v[1] + v[2] + v[3]);
+  // Eq. (3): C = t' (t - c(t))^T, summed over the corners.
+  Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+  for (int i = 0; i < 4; ++i) C += ref[i] * (v[i] - center).transpose();
+  // Eq. (4): C = U Sigma V^T.
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(C, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d U = svd.matrixU();
+  const Eigen::Matrix3d& V = svd.matrixV();
+  // Eq. (6) with a reflection fixed by flipping the last singular vector of U.
+  if ((V * U.transpose()).determinant() < 0) U.col(2) = -U.col(2);
+  // Eq. (5): Sigma' = cbrt(vol_bar(t) / vol(t')) I_3.
+  const double scale = std::cbrt(std::max(smoothed_volume, 0.0) / kReferenceVolume);
+  const Eigen::Matrix3d S = scale * V * U.transpose();
+  std::array<Vec3, 4> targets;
+  for (int i = 0; i < 4; ++i) targets[i] = S * ref[i];
+  return targets;
+}
+
+}  // namespace
+
+void add_asap_term(const Domain& domain, double weight_scale, QuadraticAccumulator& q) {
+  const auto& tets = domain.tets();
+  const auto& neighbors = domain.tet_neighbors();
+  const auto& x = domain.vertices();
+  const std::size_t m = tets.size();
+  auto corners = [&](std::size_t t) {
+    return std::array<Vec3, 4>{x[tets[t][0]], x[tets[t][1]], x[tets[t][2]], x[tets[t][3]]};
+  };
+
+  std::vector<double> volume(m);
+  tbb::parallel_for(std::size_t(0), m, [&](std::size_t t) { volume[t] = signed_volume(corners(t)); });
+
+  // vol_bar(t): the mean of the volumes of t and of the tets adjacent to it.
+  std::vector<std::array<Vec3, 4>> targets(m);
+  tbb::parallel_for(std::size_t(0), m, [&](std::size_t t) {
+    double sum = volume[t];
+    int count = 1;
+    for (int nb : neighbors[t])
+      if (nb >= 0) {
+        sum += volume[nb];
+        ++count;
+      }
+    targets[t] = asap_targets(corners(t), sum / count);
+  });
+
+  // w_a(t) E_a(t) with E_a(t) = sum_i |(v_i - c(t)) - S* v_{t'_i}|^2 (Eq. (7)):
+  // per coordinate, x^T P x - 2 q^T x + |q|^2 with P = I_4 - 1/4 (the
+  // centering, P q = q since the targets are centered). Zero-volume tets
+  // have zero weight.
+  const std::size_t first = q.isotropic.size();
+  q.isotropic.resize(first + 16 * m);
+  tbb::parallel_for(std::size_t(0), m, [&](std::size_t t) {
+    const double w = weight_scale * std::abs(volume[t]);
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        q.isotropic[first + 16 * t + 4 * i + j] =
+            Triplet(tets[t][i], tets[t][j], w * ((i == j ? 1.0 : 0.0) - 0.25));
+  });
+  for (std::size_t t = 0; t < m; ++t) {
+    const double w = weight_scale * std::abs(volume[t]);
+    for (int i = 0; i < 4; ++i) {
+      q.b.segment<3>(3 * tets[t][i]) += w * targets[t][i];
+      q.c += w * targets[t][i].squaredNorm();
+    }
+  }
+}
+
+}  // namespace pdd::optimize_detail

@@ -1,0 +1,73 @@
+// E(T), Eq. (1), frozen for one round: a quadratic in the 3|V| coordinates.
+#include <pdd/optimize.h>
+
+#include "optimize/energy_terms.h"
+
+#include <cmath>
+
+namespace pdd {
+
+double DomainEnergy::value(const Eigen::VectorXd& x) const {
+  return x.dot(A * x) - 2.0 * b.dot(x) + c;
+}
+
+Eigen::VectorXd DomainEnergy::gradient(const Eigen::VectorXd& x) const {
+  return 2.0 * (A * x - b);
+}
+
+Eigen::VectorXd stacked_positions(const Domain& domain) {
+  const auto& x = domain.vertices();
+  Eigen::VectorXd out(3 * x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) out.segment<3>(3 * i) = x[i];
+  return out;
+}
+
+DomainEnergy domain_energy(const Domain& domain, const OptimizerOptions& options) {
+  using namespace optimize_detail;
+  const std::size_t n = domain.num_vertices();
+  DomainEnergy energy;
+  energy.diameter = triangulation_diameter(domain);
+  energy.fixed = boundary_vertices(domain, options.boundary_band * energy.diameter);
+
+  for (const auto& t : domain.tets()) {
+    int negative = 0;
+    for (int v : t) negative += domain.f()[v] < 0;
+    energy.crossing_tets += negative > 0 && negative < 4;
+  }
+
+  QuadraticAccumulator q;
+  q.b = Eigen::VectorXd::Zero(3 * n);
+  // Lengths are measured in units of r(T), so that E is dimensionless and
+  // the minimizer invariant to rigid motion and uniform scaling: w_a =
+  // vol(t) / r^3 and w_m = area(a_t) / r^2 as in §3.3, E_a, E_m and E_d
+  // divided by r^2. The paper's w_d = 100 / r(T) would scale unlike the other
+  // two terms; it becomes w_d = 100 in these units.
+  const double r = energy.diameter;
+  if (r > 0) {
+    if (options.asap && options.lambda_asap > 0)
+      add_asap_term(domain, options.lambda_asap / std::pow(r, 5), q);
+    if (options.mid_edge && options.lambda_mid_edge > 0)
+      add_mid_edge_term(domain, options.lambda_mid_edge / std::pow(r, 4), q);
+    if (options.damping && options.damping_weight > 0)
+      add_damping_term(domain, energy.fixed, options.damping_weight / (r * r), q);
+  }
+
+  // A = (isotropic part) (x) I_3 + coupled part. The isotropic part is
+  // summed on |V| x |V| first: a third of the entries to sort.
+  Eigen::SparseMatrix<double> isotropic(n, n);
+  isotropic.setFromTriplets(q.isotropic.begin(), q.isotropic.end());
+  std::vector<Triplet>().swap(q.isotropic);
+  std::vector<Triplet> triplets;
+  triplets.reserve(3 * isotropic.nonZeros() + q.coupled.size());
+  for (Eigen::Index j = 0; j < isotropic.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(isotropic, j); it; ++it)
+      for (int k = 0; k < 3; ++k) triplets.emplace_back(3 * it.row() + k, 3 * j + k, it.value());
+  triplets.insert(triplets.end(), q.coupled.begin(), q.coupled.end());
+  energy.A.resize(3 * n, 3 * n);
+  energy.A.setFromTriplets(triplets.begin(), triplets.end());
+  energy.b = std::move(q.b);
+  energy.c = q.c;
+  return energy;
+}
+
+}  // namespace pdd

@@ -1,0 +1,213 @@
+// One round of the optimizer, §3.3 "Linear Solver": minimize the frozen
+// quadratic E(T) by CG from the current positions, guard the move, then
+// rebuild the Delaunay triangulation and carry f over (Domain::move_vertices).
+#include <pdd/errors.h>
+#include <pdd/optimize.h>
+
+#include "common/nearest_neighbors.h"
+#include "optimize/block_jacobi.h"
+#include "optimize/energy_terms.h"
+
+#include <Eigen/IterativeLinearSolvers>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <limits>
+#include <string>
+
+namespace pdd {
+namespace {
+
+using optimize_detail::Triplet;
+
+void check(const OptimizerOptions& o) {
+  auto fail = [](const std::string& what, double value) {
+    throw InputError("optimizer: " + what + ", got " + std::to_string(value));
+  };
+  if (!(o.lambda_asap >= 0)) fail("lambda_asap must be >= 0", o.lambda_asap);
+  if (!(o.lambda_mid_edge >= 0)) fail("lambda_mid_edge must be >= 0", o.lambda_mid_edge);
+  if (!(o.damping_weight >= 0)) fail("damping_weight must be >= 0", o.damping_weight);
+  if (!(o.boundary_band >= 0)) fail("boundary_band must be >= 0", o.boundary_band);
+  if (!(o.cg_tolerance > 0)) fail("cg_tolerance must be > 0", o.cg_tolerance);
+  if (o.cg_max_iterations < 1) fail("cg_max_iterations must be >= 1", o.cg_max_iterations);
+  if (!(o.min_distance_ratio >= 0 && o.min_distance_ratio < 1))
+    fail("min_distance_ratio must be in [0, 1)", o.min_distance_ratio);
+}
+
+// The minimizer of E over the free vertices, by CG on the displacement from
+// x0 (the same iterates as CG started from x0, with a stopping test relative
+// to the initial residual, which does not depend on where the domain sits).
+Eigen::VectorXd minimize(const DomainEnergy& energy, const Eigen::VectorXd& x0,
+                         const OptimizerOptions& options, OptimizerReport& report) {
+  const Eigen::Index n = x0.size() / 3;
+  std::vector<int> free_index(n, -1);
+  int free = 0;
+  for (Eigen::Index v = 0; v < n; ++v)
+    if (!energy.fixed[v]) free_index[v] = free++;
+  if (free == 0) return x0;
+
+  // A_ff delta = -(A x0 - b)_f: the fixed vertices do not move.
+  const Eigen::VectorXd residual = energy.b - energy.A * x0;
+  Eigen::VectorXd rhs(3 * free);
+  std::vector<Triplet> triplets;
+  for (Eigen::Index j = 0; j < energy.A.outerSize(); ++j) {
+    const int fj = free_index[j / 3];
+    if (fj < 0) continue;
+    rhs[3 * fj + j % 3] = residual[j];
+    for (Eigen::SparseMatrix<double>::InnerIterator it(energy.A, j); it; ++it) {
+      const int fi = free_index[it.row() / 3];
+      if (fi >= 0) triplets.emplace_back(3 * fi + it.row() % 3, 3 * fj + j % 3, it.value());
+    }
+  }
+  Eigen::SparseMatrix<double> A_ff(3 * free, 3 * free);
+  A_ff.setFromTriplets(triplets.begin(), triplets.end());
+
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
+                           optimize_detail::BlockJacobiPreconditioner>
+      cg;
+  cg.setTolerance(options.cg_tolerance);
+  cg.setMaxIterations(options.cg_max_iterations);
+  cg.compute(A_ff);
+  const Eigen::VectorXd delta = cg.solve(rhs);
+  report.cg_iterations = static_cast<int>(cg.iterations());
+  report.cg_residual = cg.error();
+  if (!delta.allFinite()) throw SolverError("optimizer: the conjugate gradient diverged");
+
+  Eigen::VectorXd x = x0;
+  for (Eigen::Index v = 0; v < n; ++v)
+    if (free_index[v] >= 0) x.segment<3>(3 * v) += delta.segment<3>(3 * free_index[v]);
+  return x;
+}
+
+// The shortest edge at each vertex (its nearest neighbour is one of its
+// Delaunay neighbours).
+std::vector<double> shortest_edges(const Domain& domain) {
+  const auto& x = domain.vertices();
+  std::vector<double> shortest(x.size(), std::numeric_limits<double>::infinity());
+  for (const auto& t : domain.tets())
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const double length = (x[t[i]] - x[t[j]]).norm();
+        shortest[t[i]] = std::min(shortest[t[i]], length);
+        shortest[t[j]] = std::min(shortest[t[j]], length);
+      }
+  return shortest;
+}
+
+// Moving vertices that would leave the domain or come closer to another
+// vertex than min_distance_ratio times their shortest edge.
+std::vector<char> stray_vertices(const Domain& domain, const std::vector<Vec3>& positions,
+                                 const std::vector<char>& moving, const std::vector<double>& shortest,
+                                 double min_distance_ratio) {
+  const std::size_t n = positions.size();
+  std::vector<char> stray(n, 0);
+  const detail::NearestNeighbors nearest(positions);
+  tbb::parallel_for(std::size_t(0), n, [&](std::size_t v) {
+    if (!moving[v]) return;
+    for (int u : nearest.query(positions[v], 2))
+      if (u != static_cast<int>(v) &&
+          (positions[u] - positions[v]).norm() < min_distance_ratio * shortest[v])
+        stray[v] = 1;
+  });
+  for (std::size_t v = 0; v < n; ++v)  // serial: point location is not thread-safe
+    if (moving[v] && !stray[v] && domain.locate(positions[v]).tet < 0) stray[v] = 1;
+  return stray;
+}
+
+// Moving vertices of the tets of `moved` that are flat: 6 vol <= 1e-12 l^3,
+// l the longest edge (the operators of fem.h need 6 vol > 0 in floating point).
+std::vector<char> collapsed_vertices(const Domain& moved, const std::vector<char>& moving) {
+  const auto& x = moved.vertices();
+  const auto& tets = moved.tets();
+  std::vector<char> flat(tets.size(), 0);
+  tbb::parallel_for(std::size_t(0), tets.size(), [&](std::size_t t) {
+    const auto& v = tets[t];
+    const Vec3 e1 = x[v[1]] - x[v[0]], e2 = x[v[2]] - x[v[0]], e3 = x[v[3]] - x[v[0]];
+    const double l = std::max({e1.norm(), e2.norm(), e3.norm(), (e2 - e1).norm(),
+                               (e3 - e1).norm(), (e3 - e2).norm()});
+    flat[t] = !(e1.dot(e2.cross(e3)) > 1e-12 * l * l * l);
+  });
+  std::vector<char> collapsed(x.size(), 0);
+  for (std::size_t t = 0; t < tets.size(); ++t)
+    if (flat[t])
+      for (int v : tets[t])
+        if (moving[v]) collapsed[v] = 1;
+  return collapsed;
+}
+
+}  // namespace
+
+OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options) {
+  check(options);
+  OptimizerReport report;
+  if (domain.num_tets() == 0) return report;
+  const DomainEnergy energy = domain_energy(domain, options);
+  report.diameter = energy.diameter;
+  report.crossing_tets = energy.crossing_tets;
+  for (bool f : energy.fixed) report.fixed_vertices += f;
+
+  const Eigen::VectorXd x0 = stacked_positions(domain);
+  const Eigen::VectorXd half_gradient = energy.A * x0 - energy.b;
+  report.energy_before = energy.value(x0);
+  Eigen::VectorXd step = minimize(energy, x0, options, report) - x0;
+
+  // Guard. The triangulation is rebuilt as a Delaunay one after the move, so
+  // no element of it can be inverted; what can go wrong is a vertex leaving
+  // the domain (the hull, hence the boundary sphere, would change), a vertex
+  // coming (nearly) onto another one, or a collapsed (flat) tet in the new
+  // triangulation. The moves of the vertices involved are sent back, and E
+  // must not rise along the remaining step: it is cut to the minimum of E on
+  // its line if it would.
+  const Eigen::Index n = x0.size() / 3;
+  const std::vector<double> shortest = shortest_edges(domain);
+  std::vector<char> rejected(n, 0);
+  auto send_back = [&](const std::vector<char>& offenders) {
+    bool any = false;
+    for (Eigen::Index v = 0; v < n; ++v)
+      if (offenders[v]) {
+        step.segment<3>(3 * v).setZero();
+        rejected[v] = 1;
+        any = true;
+      }
+    return any;
+  };
+  double alpha = 1;
+  double energy_change = 0;
+  for (;;) {
+    const Eigen::VectorXd x = x0 + alpha * step;
+    std::vector<Vec3> positions(n);
+    std::vector<char> moving(n);
+    for (Eigen::Index v = 0; v < n; ++v) {
+      positions[v] = x.segment<3>(3 * v);
+      moving[v] = !step.segment<3>(3 * v).isZero(0);
+    }
+    if (send_back(stray_vertices(domain, positions, moving, shortest, options.min_distance_ratio)))
+      continue;
+    // E(x0 + a s) - E(x0) = a^2 s.As + 2 a s.(A x0 - b).
+    const double curvature = step.dot(energy.A * step);
+    const double slope = step.dot(half_gradient);
+    energy_change = alpha * alpha * curvature + 2 * alpha * slope;
+    if (energy_change > 0) {
+      const double line_minimum = slope < 0 && curvature > 0 ? -slope / curvature : 0.0;
+      alpha = line_minimum > 0 && line_minimum < alpha ? line_minimum : 0.0;
+      if (alpha > 0) continue;
+      energy_change = 0;
+      break;
+    }
+    if (std::find(moving.begin(), moving.end(), 1) == moving.end()) break;
+    Domain moved = domain;
+    moved.move_vertices(positions);
+    if (send_back(collapsed_vertices(moved, moving))) continue;
+    for (Eigen::Index v = 0; v < n; ++v)
+      report.max_displacement =
+          std::max(report.max_displacement, (x - x0).segment<3>(3 * v).norm() / energy.diameter);
+    domain = std::move(moved);
+    break;
+  }
+  for (char r : rejected) report.rejected_moves += r;
+  report.step_scale = alpha;
+  report.energy_after = report.energy_before + energy_change;
+  return report;
+}
+
+}  // namespace pdd
