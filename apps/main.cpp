@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   pdd::cli::add_reconstruct_command(app);
   pdd::cli::add_quality_command(app);
+  pdd::cli::add_compare_command(app);
 
   // Exit codes: 0 success, 1 runtime failure, 2 bad usage or bad input.
   try {
@@ -20,7 +21,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::Success& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
+    std::cerr << "pdd: error: " << e.what() << " (see pdd --help)\n";
     return 2;
   } catch (const pdd::InputError& e) {
     std::cerr << "pdd: error: " << e.what() << "\n";

@@ -3,7 +3,6 @@
 #include <pdd/io.h>
 #include <pdd/quality.h>
 
-#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -11,6 +10,7 @@
 #include <string>
 
 #include "commands.h"
+#include "json.h"
 
 namespace pdd::cli {
 namespace {
@@ -19,31 +19,6 @@ struct QualityArgs {
   std::string mesh;
   bool json = false;
 };
-
-std::string number(double v, int digits) {
-  if (!std::isfinite(v)) return "null";
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", digits, v);
-  return buffer;
-}
-
-// A JSON string literal (quotes, backslashes and control characters escaped).
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (const unsigned char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += static_cast<char>(c);
-    } else if (c < 0x20) {
-      char buffer[8];
-      std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
-      out += buffer;
-    } else {
-      out += static_cast<char>(c);
-    }
-  }
-  return out + "\"";
-}
 
 std::string json(const std::string& path, const TriangleMesh& mesh, const TriangleQuality& q,
                  const SurfaceTopology& s) {

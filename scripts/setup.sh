@@ -8,6 +8,7 @@ packages=(
   libcgal-dev libeigen3-dev libspectra-dev
   libsuitesparse-dev libopenblas-dev libtbb-dev
   libcli11-dev libgtest-dev libbenchmark-dev
+  time jq  # bench/shared_data.sh: /usr/bin/time -v, JSON fields
 )
 
 missing=()
