@@ -1,0 +1,163 @@
+// The implicit solvers of §3.5: each maps (domain, points) to a
+// piecewise-linear function f given at the domain's vertices, whose zero set
+// is the reconstructed surface. Sign convention everywhere: f < 0 inside,
+// f > 0 outside.
+//
+// Units. The weights below are dimensionless: lengths are measured in units
+// of the input's size l = the largest side of its bounding box (the octree
+// implementations of screened Poisson [KH13] and SSD [CT11] in PoissonRecon
+// scale the input into a unit cube of side 1.1 l), so that scaling the input
+// does not change the surface. The energies are those of Eqs. (13), (15) and (16)-(17) written
+// in these units (e.g. SSD's alpha term becomes alpha / (l^2 |X|) sum f(p)^2
+// for f in input units).
+#pragma once
+
+#include <pdd/domain.h>
+#include <pdd/types.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace pdd {
+
+enum class SolverKind { kPoisson, kSsd, kSpectral };
+
+// "poisson", "ssd" or "spectral" (any case); InputError otherwise.
+SolverKind parse_solver_kind(const std::string& name);
+std::string to_string(SolverKind kind);
+
+// How the sparse symmetric positive definite systems are solved.
+enum class LinearMethod {
+  kAuto,               // the route measured fastest for each solver (docs/benchmarks.md,
+                       // "Solvers"): CG + Jacobi for Poisson, CHOLMOD for SSD and spectral
+  kCholmod,            // supernodal Cholesky (CHOLMOD with OpenBLAS); the symbolic analysis is
+                       // reused while the sparsity pattern does not change
+  kConjugateGradient,  // Eigen's conjugate gradients from the warm start, if any
+};
+
+// Preconditioner of kConjugateGradient.
+enum class Preconditioner {
+  kAuto,                // Jacobi for Poisson, incomplete Cholesky for SSD and spectral
+  kJacobi,              // diagonal: free to build, more iterations
+  kIncompleteCholesky,  // Eigen's IncompleteCholesky (AMD ordering): costly to build, fewer iterations
+};
+
+struct LinearSolverOptions {
+  LinearMethod method = LinearMethod::kAuto;           // see LinearMethod
+  Preconditioner preconditioner = Preconditioner::kAuto;  // see Preconditioner
+  double cg_tolerance = 1e-10;  // CG stops at |A x - b| <= tol |b|; the paper's tolerance (§4.4, Table 2)
+  int cg_max_iterations = 20000;  // CG gives up (SolverError) after this many iterations
+  double max_residual = 1e-6;     // a direct solve whose |A x - b| / |b| exceeds this is a SolverError
+};
+
+// Screened Poisson, Eqs. (13)-(14):
+//   [L + alpha l / |X| Phi^T Phi] F = Div N~,
+// with N~ the normals smoothed by a Gaussian kernel, then f <- f - median f(p).
+struct PoissonOptions {
+  double alpha = 4.0;  // screening weight: PoissonRecon's default --pointWeight for the
+                       // degree-2 B-splines of [KH13]; 0 gives the original Poisson equation
+                       // [KBH06], made definite by fixing f at one vertex
+  double kernel_size = 0.0;  // standard deviation of the Gaussian that smooths the normals, in
+                             // input units; 0 = kernel_spacing x the mean distance from a
+                             // sample to its nearest neighbour. The domain should be at least
+                             // this fine near the samples (§3.1, "Assumptions Made on the Solver").
+  double kernel_spacing = 2.0;  // see kernel_size; about the support of KBH06's splatting
+                                // (a node of the sample spacing, smoothed by its B-spline).
+                                // Measured with 1% noise: 1 follows the noise (sphere: max
+                                // error 0.023), 2 and 3 do not (0.011, 0.008)
+  bool median_shift = true;  // f <- f - median f(p) so that the zero set passes through the
+                             // samples (§3.5); needed when alpha = 0
+};
+
+// Smooth signed distance [CT11], Eq. (15):
+//   [alpha/(l^2 |X|) Phi^T Phi + beta/|X| G^T S^T S G + gamma l^2/|T| H^T M~_V^-1 H] F
+//     = beta/|X| G^T S^T N,
+// with |T| the volume of the domain.
+struct SsdOptions {
+  // The ratios are those of the SSD implementation in PoissonRecon (SSDRecon
+  // defaults --valueWeight 4, --gradientWeight 0.001, --biLapWeight 1e-5),
+  // divided by the gradient weight (its input is scaled into a unit cube as
+  // ours is into units of l).
+  double alpha = 4000.0;  // f(p) = 0 at the samples
+  double beta = 1.0;      // grad f(p) = n_p
+  double gamma = 0.01;    // Hessian smoothness; larger is smoother (measured on the ellipsoid
+                          // of the tests, l = 2: gamma = 1 moves the zero set by up to 0.03,
+                          // 0.01 by up to 0.003)
+};
+
+// Spectral [ACTD07], Eqs. (16)-(17): the eigenvector of the largest
+// eigenvalue of
+//   [G^T S^T C S G] F = lambda [alpha/|X| Phi^T Phi + beta/l L + gamma l L M_V^-1 L] F,
+// C_p = I + mu n_p n_p^T, each sample's term weighted by the volume of its
+// tet over the mean of those volumes (ACTD07's integral of
+// grad f^T C grad f; the same as Eq. (17) on a uniform mesh, and immune to
+// slivers, see spectral.cpp). The orientation of the normals is ignored. The
+// sign of F is chosen so that f > 0 on the boundary of the domain (outside).
+// Neither ACTD07 nor the paper gives weights; these are ours, measured on
+// the sphere, ellipsoid and torus of tests/solvers_test.cpp.
+struct SpectralOptions {
+  double alpha = 1e6;   // f(p) small at the samples. Must dominate gamma by ~1e5 or more: the
+                        // data term is all that makes a linear function lose to the
+                        // signed-distance-like one (measured: 1e4 fails on the torus); larger
+                        // values follow noise more (1e7 fails on the sphere with 1% noise)
+  double beta = 0.0;    // Dirichlet energy in the constraint (no measured benefit)
+  double gamma = 1.0;   // bi-Laplacian energy in the constraint (ACTD07's smoothness)
+  double mu = 10.0;     // anisotropy: gradients along n_p count 1 + mu times more. Measured on
+                        // the test shapes: 0 to 100 give the same clean surfaces (the data term
+                        // places the zero set); with 1% noise larger mu is slightly smoother
+  int krylov_size = 20;       // Lanczos basis size (Spectra's ncv)
+  int max_restarts = 1000;    // Lanczos restarts before SolverError
+  double tolerance = 1e-10;   // relative accuracy of the eigenvalue (Spectra)
+  bool median_shift = true;   // f <- f - median f(p) after signing, as ACTD07 picks the
+                              // isovalue at the median of f over the samples
+};
+
+struct SolverOptions {
+  SolverKind kind = SolverKind::kSsd;  // the paper's experiments use SSD (§4)
+  PoissonOptions poisson;
+  SsdOptions ssd;
+  SpectralOptions spectral;
+  LinearSolverOptions linear;
+};
+
+// What the last solve did.
+struct SolverStats {
+  std::string method;            // "cholmod", "cg+jacobi", "cg+ic"; spectral: "lanczos+" one of them
+  int iterations = 0;            // CG iterations (0 for CHOLMOD); spectral: Lanczos steps, i.e.
+                                 // products with B^-1 A
+  double residual = 0;           // |A x - b| / |b| of the final solve (spectral: of the eigenpair,
+                                 // |A x - lambda B x| / (lambda |B x|))
+  double assembly_seconds = 0;   // point location, operators and system matrix
+  double factorize_seconds = 0;  // symbolic + numeric factorization, or preconditioner
+  double solve_seconds = 0;      // triangular solves / CG / Lanczos, and the median shift
+  bool reused_analysis = false;  // the symbolic factorization of the previous solve was kept
+  std::size_t num_vertices = 0;
+  std::size_t num_points = 0;
+  std::size_t nonzeros = 0;      // in the system matrix (lower and upper)
+  double median_shift = 0;       // the constant subtracted from f (0 when not shifted)
+  double eigenvalue = 0;         // spectral: lambda
+  double kernel_size = 0;        // Poisson: the kernel standard deviation used, in input units
+};
+
+class ImplicitSolver {
+ public:
+  virtual ~ImplicitSolver();
+  // f at the vertices of `domain` (f < 0 inside). warm_start, if given, is a
+  // guess of f at the same vertices (e.g. the previous iterate interpolated
+  // onto the new domain); the CG routes start from it (the spectral solver
+  // checks its size but does not use it, see spectral.cpp). Throws InputError
+  // when a point lies outside the domain or normals are missing, SolverError
+  // when the numerical solve fails (never returns an unconverged f).
+  virtual std::vector<double> solve(const Domain& domain, const PointSet& points,
+                                    const std::vector<double>* warm_start = nullptr) = 0;
+  virtual const SolverStats& stats() const = 0;
+  // Poisson and SSD need oriented normals, spectral needs normals but not
+  // their orientation; all three throw InputError without normals.
+  virtual bool needs_normals() const = 0;
+  virtual bool needs_oriented_normals() const = 0;
+};
+
+std::unique_ptr<ImplicitSolver> make_solver(const SolverOptions& options);
+
+}  // namespace pdd

@@ -1,0 +1,153 @@
+// Private to src/fem: per-tet geometry and the deterministic parallel
+// assembly of vertex-by-vertex matrices.
+//
+// Assembly "pulls" instead of "pushing": each column j is computed by one
+// task that walks the tets incident to vertex j in increasing order and adds
+// their contributions. No two tasks write the same entry and every sum runs
+// in an order fixed by the mesh, so the result does not depend on thread
+// scheduling, and no triplet list (16 entries per tet) is ever stored.
+#pragma once
+
+#include <pdd/fem.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pdd::detail {
+
+// Geometry of one tet: its volume and the (constant) gradients of its four
+// barycentric coordinates.
+struct TetGradients {
+  double volume;
+  Vec3 grad[4];
+};
+
+inline TetGradients tet_gradients(const TetMesh& mesh, int t) {
+  const auto& tet = mesh.tets[t];
+  const Vec3& x0 = mesh.vertices[tet[0]];
+  const Vec3 e1 = mesh.vertices[tet[1]] - x0;
+  const Vec3 e2 = mesh.vertices[tet[2]] - x0;
+  const Vec3 e3 = mesh.vertices[tet[3]] - x0;
+  const double det = e1.dot(e2.cross(e3));
+  if (!(det > 0))
+    throw std::invalid_argument("fem: tet " + std::to_string(t) +
+                                " is not positively oriented (6 * volume = " +
+                                std::to_string(det) + ")");
+  TetGradients g;
+  g.volume = det / 6.0;
+  // Rows of [e1 e2 e3]^-1 are the gradients of barycentric coordinates 1..3.
+  g.grad[1] = e2.cross(e3) / det;
+  g.grad[2] = e3.cross(e1) / det;
+  g.grad[3] = e1.cross(e2) / det;
+  g.grad[0] = -(g.grad[1] + g.grad[2] + g.grad[3]);
+  return g;
+}
+
+// Vertex -> incident tets, in increasing tet order (compressed rows).
+struct VertexStars {
+  std::vector<int> offsets;  // |V| + 1
+  std::vector<int> tets;
+  int begin(int v) const { return offsets[v]; }
+  int end(int v) const { return offsets[v + 1]; }
+};
+
+inline VertexStars vertex_stars(const TetMesh& mesh) {
+  VertexStars s;
+  const int n = static_cast<int>(mesh.vertices.size());
+  s.offsets.assign(n + 1, 0);
+  for (const auto& tet : mesh.tets)
+    for (int v : tet) {
+      if (v < 0 || v >= n) throw std::invalid_argument("fem: tet refers to a missing vertex");
+      ++s.offsets[v + 1];
+    }
+  for (int v = 0; v < n; ++v) s.offsets[v + 1] += s.offsets[v];
+  s.tets.resize(s.offsets[n]);
+  std::vector<int> fill(s.offsets.begin(), s.offsets.end() - 1);
+  for (int t = 0; t < static_cast<int>(mesh.tets.size()); ++t)
+    for (int v : mesh.tets[t]) s.tets[fill[v]++] = t;
+  return s;
+}
+
+inline int local_index(const std::array<int, 4>& tet, int v) {
+  for (int i = 0; i < 4; ++i)
+    if (tet[i] == v) return i;
+  return -1;
+}
+
+// Sorted vertices of the closed star of v (v and its neighbours).
+inline void one_ring(const TetMesh& mesh, const VertexStars& stars, int v, std::vector<int>& ring) {
+  ring.clear();
+  for (int k = stars.begin(v); k < stars.end(v); ++k)
+    for (int w : mesh.tets[stars.tets[k]]) ring.push_back(w);
+  std::sort(ring.begin(), ring.end());
+  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+}
+
+// Assembles a (Blocks * |V|) x |V| matrix whose column j is
+//   sum over tets t incident to j of contributions to rows b * |V| + v
+//   (or v * Blocks + b when Interleaved),
+// for every vertex v of t and block b < Blocks. `column(t, jl, out)` fills
+// out[i * Blocks + b] with the contribution of tet t, local column jl, to
+// local row i (vertex tet[i]) in block b.
+template <int Blocks, bool Interleaved = false, class ColumnFn>
+SparseMatrix assemble_by_columns(const TetMesh& mesh, const VertexStars& stars, ColumnFn column) {
+  const int n = static_cast<int>(mesh.vertices.size());
+  std::vector<int> ring_size(n);
+  tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
+    std::vector<int> ring;
+    for (int j = r.begin(); j < r.end(); ++j) {
+      one_ring(mesh, stars, j, ring);
+      ring_size[j] = static_cast<int>(ring.size());
+    }
+  });
+  SparseMatrix A(static_cast<Eigen::Index>(Blocks) * n, n);
+  std::vector<long long> start(n + 1, 0);
+  for (int j = 0; j < n; ++j) start[j + 1] = start[j] + static_cast<long long>(Blocks) * ring_size[j];
+  if (start[n] > std::numeric_limits<int>::max())
+    throw std::length_error("fem: matrix has more non-zeros than an int index can hold");
+  A.resizeNonZeros(static_cast<Eigen::Index>(start[n]));
+  int* outer = A.outerIndexPtr();
+  int* inner = A.innerIndexPtr();
+  double* values = A.valuePtr();
+  for (int j = 0; j <= n; ++j) outer[j] = static_cast<int>(start[j]);
+  tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
+    std::vector<int> ring;
+    double local[4 * Blocks];
+    for (int j = r.begin(); j < r.end(); ++j) {
+      one_ring(mesh, stars, j, ring);
+      const int m = static_cast<int>(ring.size());
+      int* rows = inner + start[j];
+      double* vals = values + start[j];
+      // Position of (ring vertex k, block b) in the column, rows sorted.
+      auto slot = [m](int k, int b) { return Interleaved ? k * Blocks + b : b * m + k; };
+      for (int b = 0; b < Blocks; ++b)
+        for (int k = 0; k < m; ++k) {
+          rows[slot(k, b)] = Interleaved ? ring[k] * Blocks + b : b * n + ring[k];
+          vals[slot(k, b)] = 0.0;
+        }
+      for (int s = stars.begin(j); s < stars.end(j); ++s) {
+        const int t = stars.tets[s];
+        const auto& tet = mesh.tets[t];
+        column(t, local_index(tet, j), local);
+        for (int i = 0; i < 4; ++i) {
+          const int k = static_cast<int>(std::lower_bound(ring.begin(), ring.end(), tet[i]) -
+                                         ring.begin());
+          for (int b = 0; b < Blocks; ++b) vals[slot(k, b)] += local[i * Blocks + b];
+        }
+      }
+    }
+  });
+  return A;
+}
+
+// The Hessian of Eq. (11) with its rows either as documented in fem.h
+// ((3a + b) |V| + v) or interleaved (9 v + 3a + b), operators.cpp.
+SparseMatrix hessian_matrix_rows(const TetMesh& mesh, bool interleaved);
+
+}  // namespace pdd::detail

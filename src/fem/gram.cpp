@@ -1,0 +1,161 @@
+// Products A^T D A column by column (Gustavson's algorithm), in parallel.
+// Hand-written because Eigen's sparse product is serial and slow on these
+// shapes: 1.8 s for H^T H on a 30k-vertex domain, against 0.3 s for
+// hessian_energy below on one thread.
+#include <pdd/fem.h>
+
+#include "fem/assembly.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+namespace pdd {
+namespace {
+
+// Per-thread dense scratch: a marker per row of the result and an accumulator.
+struct Scratch {
+  std::vector<int> marker;
+  std::vector<double> accumulator;
+  std::vector<int> touched;
+};
+
+// Builds an n x n matrix column by column. pattern(j, visit) calls visit(i)
+// for every row i of column j (repeats allowed); values(j, add) calls
+// add(i, x) for every contribution x to entry (i, j), in an order that
+// depends only on j. Both run in parallel over j; the result is
+// deterministic.
+template <class Pattern, class Values>
+SparseMatrix accumulate_columns(int n, Pattern pattern, Values values) {
+  tbb::enumerable_thread_specific<Scratch> scratch([n] {
+    Scratch s;
+    s.marker.assign(n, -1);
+    s.accumulator.assign(n, 0.0);
+    return s;
+  });
+  std::vector<long long> start(n + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
+    Scratch& s = scratch.local();
+    for (int j = r.begin(); j < r.end(); ++j) {
+      long long count = 0;
+      pattern(j, [&](int i) {
+        if (s.marker[i] != j) {
+          s.marker[i] = j;
+          ++count;
+        }
+      });
+      start[j + 1] = count;
+    }
+  });
+  for (int j = 0; j < n; ++j) start[j + 1] += start[j];
+  if (start[n] > std::numeric_limits<int>::max())
+    throw std::length_error("fem: product has more non-zeros than an int index can hold");
+
+  SparseMatrix result(n, n);
+  result.resizeNonZeros(static_cast<Eigen::Index>(start[n]));
+  for (int j = 0; j <= n; ++j) result.outerIndexPtr()[j] = static_cast<int>(start[j]);
+  int* r_inner = result.innerIndexPtr();
+  double* r_value = result.valuePtr();
+  for (auto& s : scratch) std::fill(s.marker.begin(), s.marker.end(), -1);
+
+  tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
+    Scratch& s = scratch.local();
+    for (int j = r.begin(); j < r.end(); ++j) {
+      s.touched.clear();
+      values(j, [&](int i, double x) {
+        if (s.marker[i] != j) {
+          s.marker[i] = j;
+          s.accumulator[i] = 0.0;
+          s.touched.push_back(i);
+        }
+        s.accumulator[i] += x;
+      });
+      std::sort(s.touched.begin(), s.touched.end());
+      long long out = start[j];
+      for (int i : s.touched) {
+        r_inner[out] = i;
+        r_value[out] = s.accumulator[i];
+        ++out;
+      }
+    }
+  });
+  return result;
+}
+
+SparseMatrix compressed(const SparseMatrix& A) {
+  SparseMatrix c = A;
+  c.makeCompressed();
+  return c;
+}
+
+}  // namespace
+
+SparseMatrix gram_matrix(const SparseMatrix& A, const Eigen::VectorXd& d) {
+  if (d.size() != A.rows()) throw std::invalid_argument("gram_matrix: d must have A.rows() entries");
+  const SparseMatrix Ac = compressed(A);
+  const SparseMatrix At = compressed(A.transpose());  // column k of At is row k of A
+  const int* a_outer = Ac.outerIndexPtr();
+  const int* a_inner = Ac.innerIndexPtr();
+  const double* a_value = Ac.valuePtr();
+  const int* t_outer = At.outerIndexPtr();
+  const int* t_inner = At.innerIndexPtr();
+  const double* t_value = At.valuePtr();
+  // Column j of A^T D A = sum over rows k of A in column j of d_k A_kj (row k of A)^T.
+  return accumulate_columns(
+      static_cast<int>(A.cols()),
+      [&](int j, auto&& visit) {
+        for (int p = a_outer[j]; p < a_outer[j + 1]; ++p)
+          for (int q = t_outer[a_inner[p]]; q < t_outer[a_inner[p] + 1]; ++q) visit(t_inner[q]);
+      },
+      [&](int j, auto&& add) {
+        for (int p = a_outer[j]; p < a_outer[j + 1]; ++p) {
+          const int k = a_inner[p];
+          const double w = d[k] * a_value[p];
+          for (int q = t_outer[k]; q < t_outer[k + 1]; ++q) add(t_inner[q], w * t_value[q]);
+        }
+      });
+}
+
+SparseMatrix hessian_energy(const TetMesh& mesh) {
+  // Rows 9v + ab: column j holds, for each v in the ring of j, the 9 entries
+  // (H_v)_{ab, j} next to each other; column 9v + ab of Ht is row (v, ab) of
+  // H, and the 9 columns of a vertex share the pattern "ring of v".
+  const SparseMatrix H = detail::hessian_matrix_rows(mesh, true);
+  const SparseMatrix Ht = compressed(H.transpose());
+  const Eigen::VectorXd inverse_mass = vertex_masses(mesh).cwiseInverse();
+  const int* h_outer = H.outerIndexPtr();
+  const int* h_inner = H.innerIndexPtr();
+  const double* h_value = H.valuePtr();
+  const int* t_outer = Ht.outerIndexPtr();
+  const int* t_inner = Ht.innerIndexPtr();
+  const double* t_value = Ht.valuePtr();
+  // Column j = sum over v of (1 / m_v) H_v^T (H_v)_{:, j}, H_v the dense
+  // 9 x |ring(v)| block of the rows of v.
+  return accumulate_columns(
+      static_cast<int>(mesh.vertices.size()),
+      [&](int j, auto&& visit) {
+        for (int p = h_outer[j]; p < h_outer[j + 1]; p += 9) {
+          const int c = h_inner[p];  // = 9v, the block's first row
+          for (int q = t_outer[c]; q < t_outer[c + 1]; ++q) visit(t_inner[q]);
+        }
+      },
+      [&](int j, auto&& add) {
+        for (int p = h_outer[j]; p < h_outer[j + 1]; p += 9) {
+          const int c = h_inner[p];
+          const double w = inverse_mass[c / 9];
+          const int len = t_outer[c + 1] - t_outer[c];
+          const double* block = t_value + t_outer[c];  // 9 columns of length len, contiguous
+          for (int q = 0; q < len; ++q) {
+            double x = 0;
+            for (int ab = 0; ab < 9; ++ab) x += h_value[p + ab] * block[ab * len + q];
+            add(t_inner[t_outer[c] + q], w * x);
+          }
+        }
+      });
+}
+
+}  // namespace pdd

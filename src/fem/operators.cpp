@@ -1,0 +1,127 @@
+// The piecewise-linear operators of §3.5: volumes, masses, G, L (Eq. (12)),
+// G^T W G and the Hessian H (Eq. (11)).
+#include <pdd/fem.h>
+
+#include "fem/assembly.h"
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+namespace pdd {
+
+using detail::tet_gradients;
+using detail::TetGradients;
+
+Eigen::VectorXd tet_volumes(const TetMesh& mesh) {
+  const int nt = static_cast<int>(mesh.tets.size());
+  Eigen::VectorXd vol(nt);
+  tbb::parallel_for(0, nt, [&](int t) { vol[t] = tet_gradients(mesh, t).volume; });
+  return vol;
+}
+
+Eigen::VectorXd vertex_masses(const TetMesh& mesh) {
+  const Eigen::VectorXd vol = tet_volumes(mesh);
+  const detail::VertexStars stars = detail::vertex_stars(mesh);
+  const int n = static_cast<int>(mesh.vertices.size());
+  Eigen::VectorXd mass(n);
+  tbb::parallel_for(0, n, [&](int v) {
+    double m = 0;
+    for (int s = stars.begin(v); s < stars.end(v); ++s) m += vol[stars.tets[s]];
+    mass[v] = m / 4.0;
+  });
+  return mass;
+}
+
+SparseMatrix gradient_matrix(const TetMesh& mesh) {
+  // Column v holds rows 3t..3t+2 for every tet t around v, already sorted
+  // because stars list tets in increasing order: the compressed arrays are
+  // written directly.
+  const detail::VertexStars stars = detail::vertex_stars(mesh);
+  const int n = static_cast<int>(mesh.vertices.size());
+  SparseMatrix G(3 * static_cast<Eigen::Index>(mesh.tets.size()), n);
+  G.resizeNonZeros(3 * static_cast<Eigen::Index>(stars.tets.size()));
+  for (int v = 0; v <= n; ++v) G.outerIndexPtr()[v] = 3 * stars.offsets[v];
+  tbb::parallel_for(0, n, [&](int v) {
+    for (int s = stars.begin(v); s < stars.end(v); ++s) {
+      const int t = stars.tets[s];
+      const TetGradients g = tet_gradients(mesh, t);
+      const Vec3& grad = g.grad[detail::local_index(mesh.tets[t], v)];
+      for (int k = 0; k < 3; ++k) {
+        G.innerIndexPtr()[3 * s + k] = 3 * t + k;
+        G.valuePtr()[3 * s + k] = grad[k];
+      }
+    }
+  });
+  return G;
+}
+
+// Eq. (12), computed from edge lengths and dihedral angles (not from G, so
+// that the identity L = G^T M_T G is a real check of both).
+SparseMatrix cotangent_laplacian(const TetMesh& mesh) {
+  const detail::VertexStars stars = detail::vertex_stars(mesh);
+  return detail::assemble_by_columns<1>(mesh, stars, [&](int t, int jl, double* out) {
+    const auto& tet = mesh.tets[t];
+    Vec3 x[4];
+    for (int i = 0; i < 4; ++i) x[i] = mesh.vertices[tet[i]];
+    // Outward area normals of the faces opposite each vertex.
+    Vec3 face_normal[4];
+    for (int i = 0; i < 4; ++i) {
+      const Vec3& a = x[(i + 1) % 4];
+      const Vec3& b = x[(i + 2) % 4];
+      const Vec3& c = x[(i + 3) % 4];
+      Vec3 nrm = (b - a).cross(c - a);
+      if (nrm.dot(x[i] - a) > 0) nrm = -nrm;
+      face_normal[i] = nrm.normalized();
+    }
+    double diagonal = 0;
+    for (int i = 0; i < 4; ++i) {
+      if (i == jl) continue;
+      // (k, l): the edge opposite (i, jl); the faces meeting at it are those
+      // opposite i and opposite jl.
+      int kl[2], c = 0;
+      for (int m = 0; m < 4; ++m)
+        if (m != i && m != jl) kl[c++] = m;
+      const double length = (x[kl[0]] - x[kl[1]]).norm();
+      const double cos_theta = -face_normal[i].dot(face_normal[jl]);
+      const double sin_theta = face_normal[i].cross(face_normal[jl]).norm();
+      out[i] = -length * (cos_theta / sin_theta) / 6.0;
+      diagonal -= out[i];
+    }
+    out[jl] = diagonal;
+  });
+}
+
+SparseMatrix weighted_stiffness(const TetMesh& mesh, const std::vector<Eigen::Matrix3d>& weights) {
+  if (weights.size() != mesh.tets.size())
+    throw std::invalid_argument("weighted_stiffness: one 3x3 weight per tet is required");
+  const detail::VertexStars stars = detail::vertex_stars(mesh);
+  return detail::assemble_by_columns<1>(mesh, stars, [&](int t, int jl, double* out) {
+    const TetGradients g = tet_gradients(mesh, t);
+    const Vec3 wj = weights[t] * g.grad[jl];
+    for (int i = 0; i < 4; ++i) out[i] = g.grad[i].dot(wj);
+  });
+}
+
+// Eq. (11): (H f)_v,ab = sum_t vol_t d_b(phi_v) d_a(f), i.e. column w holds
+// vol_t d_b(phi_v) d_a(phi_w) at row (3a + b) |V| + v.
+namespace detail {
+
+SparseMatrix hessian_matrix_rows(const TetMesh& mesh, bool interleaved) {
+  const VertexStars stars = vertex_stars(mesh);
+  const auto column = [&](int t, int jl, double* out) {
+    const TetGradients g = tet_gradients(mesh, t);
+    for (int i = 0; i < 4; ++i)
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+          out[i * 9 + 3 * a + b] = g.volume * g.grad[i][b] * g.grad[jl][a];
+  };
+  if (interleaved) return assemble_by_columns<9, true>(mesh, stars, column);
+  return assemble_by_columns<9>(mesh, stars, column);
+}
+
+}  // namespace detail
+
+SparseMatrix hessian_matrix(const TetMesh& mesh) { return detail::hessian_matrix_rows(mesh, false); }
+
+}  // namespace pdd

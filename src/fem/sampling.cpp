@@ -1,0 +1,69 @@
+// Where the input points fall in the domain: point location, the sampling
+// matrix Phi (Eq. (14)) and the selection matrix S (Eq. (15)).
+#include <pdd/errors.h>
+#include <pdd/fem.h>
+
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <sstream>
+#include <stdexcept>
+
+namespace pdd {
+
+std::vector<Location> locate_points(const Domain& domain, const std::vector<Vec3>& points) {
+  const int n = static_cast<int>(points.size());
+  std::vector<Location> locations(n);
+  // Domain::locate is a read-only walk in the triangulation (CGAL's locate
+  // keeps its random state local), so concurrent queries are safe.
+  tbb::parallel_for(0, n, [&](int i) { locations[i] = domain.locate(points[i]); });
+  int outside = 0, first = -1;
+  for (int i = 0; i < n; ++i)
+    if (locations[i].tet < 0) {
+      if (first < 0) first = i;
+      ++outside;
+    }
+  if (outside > 0) {
+    std::ostringstream msg;
+    msg << outside << " of " << n << " points lie outside the domain (first: point " << first + 1
+        << " at " << points[first].x() << " " << points[first].y() << " " << points[first].z()
+        << ")";
+    throw InputError(msg.str());
+  }
+  return locations;
+}
+
+SparseMatrix sampling_matrix(const TetMesh& mesh, const std::vector<Location>& locations) {
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(4 * locations.size());
+  for (std::size_t p = 0; p < locations.size(); ++p) {
+    const Location& loc = locations[p];
+    if (loc.tet < 0 || loc.tet >= static_cast<int>(mesh.tets.size()))
+      throw std::invalid_argument("sampling_matrix: point " + std::to_string(p + 1) +
+                                  " is not located in the mesh");
+    for (int i = 0; i < 4; ++i)
+      entries.emplace_back(static_cast<int>(p), mesh.tets[loc.tet][i], loc.barycentric[i]);
+  }
+  SparseMatrix Phi(static_cast<Eigen::Index>(locations.size()),
+                   static_cast<Eigen::Index>(mesh.vertices.size()));
+  Phi.setFromTriplets(entries.begin(), entries.end());
+  return Phi;
+}
+
+SparseMatrix selection_matrix(std::size_t num_tets, const std::vector<Location>& locations) {
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(3 * locations.size());
+  for (std::size_t p = 0; p < locations.size(); ++p) {
+    const int t = locations[p].tet;
+    if (t < 0 || t >= static_cast<int>(num_tets))
+      throw std::invalid_argument("selection_matrix: point " + std::to_string(p + 1) +
+                                  " is not located in the mesh");
+    for (int k = 0; k < 3; ++k) entries.emplace_back(static_cast<int>(3 * p + k), 3 * t + k, 1.0);
+  }
+  SparseMatrix S(3 * static_cast<Eigen::Index>(locations.size()),
+                 3 * static_cast<Eigen::Index>(num_tets));
+  S.setFromTriplets(entries.begin(), entries.end());
+  return S;
+}
+
+}  // namespace pdd

@@ -1,0 +1,148 @@
+#include "solvers/linear_solver.h"
+
+#include "solvers/problem.h"
+
+#include <pdd/errors.h>
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/IterativeLinearSolvers>
+
+#include <sstream>
+
+namespace pdd::detail {
+namespace {
+
+using Cholmod = Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>;
+using IncompleteCholesky = Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::AMDOrdering<int>>;
+using CgIncompleteCholesky =
+    Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, IncompleteCholesky>;
+using CgJacobi = Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper,
+                                          Eigen::DiagonalPreconditioner<double>>;
+
+bool same_pattern(const SparseMatrix& a, const SparseMatrix& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros()) return false;
+  return std::equal(a.outerIndexPtr(), a.outerIndexPtr() + a.cols() + 1, b.outerIndexPtr()) &&
+         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), b.innerIndexPtr());
+}
+
+[[noreturn]] void fail(const std::string& what, double residual) {
+  std::ostringstream msg;
+  msg << what << " (relative residual " << residual << ")";
+  throw SolverError(msg.str());
+}
+
+// Galerkin correction of a warm start x in span{x, 1}: the previous iterate
+// typically differs from the solution by a scale and a constant (a median
+// shift, another solver's normalization), the smoothest modes and so the
+// slowest for CG.
+void correct_warm_start(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(b.size());
+  const Eigen::VectorXd Ax = A * x, A1 = A * ones;
+  Eigen::Matrix2d K;
+  K << x.dot(Ax), x.dot(A1), ones.dot(Ax), ones.dot(A1);
+  const Eigen::Vector2d ac = K.ldlt().solve(Eigen::Vector2d(x.dot(b), ones.dot(b)));
+  if (ac.allFinite()) x = ac[0] * x + ac[1] * ones;
+}
+
+template <class Cg>
+int run_cg(Cg& cg, const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (x.size() == b.size() && x.allFinite() && x.squaredNorm() > 0) {
+    correct_warm_start(A, b, x);
+    x = cg.solveWithGuess(b, x);
+  } else {
+    x = cg.solve(b);
+  }
+  return static_cast<int>(cg.iterations());
+}
+
+}  // namespace
+
+struct LinearSolver::Impl {
+  LinearSolverOptions options;
+  SparseMatrix A;
+  Cholmod cholmod;
+  CgJacobi cg_jacobi;
+  CgIncompleteCholesky cg_ic;
+  bool analyzed = false;
+};
+
+LinearSolver::LinearSolver(const LinearSolverOptions& options, const LinearRoute& route)
+    : impl_(std::make_unique<Impl>()), route_(route) {
+  if (route.method == LinearMethod::kAuto || route.preconditioner == Preconditioner::kAuto)
+    throw std::invalid_argument("LinearSolver: the route must be resolved (not kAuto)");
+  impl_->options = options;
+  impl_->cholmod.cholmod().print = 0;  // failures are reported as SolverError, not printed
+  impl_->cg_jacobi.setTolerance(options.cg_tolerance);
+  impl_->cg_jacobi.setMaxIterations(options.cg_max_iterations);
+  impl_->cg_ic.setTolerance(options.cg_tolerance);
+  impl_->cg_ic.setMaxIterations(options.cg_max_iterations);
+}
+
+LinearSolver::~LinearSolver() = default;
+LinearSolver::LinearSolver(LinearSolver&&) noexcept = default;
+LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
+
+std::string LinearSolver::method_name() const {
+  if (route_.method == LinearMethod::kCholmod) return "cholmod";
+  return route_.preconditioner == Preconditioner::kJacobi ? "cg+jacobi" : "cg+ic";
+}
+
+void LinearSolver::compute(const SparseMatrix& A) {
+  const auto start = Clock::now();
+  Impl& d = *impl_;
+  reused_analysis_ = false;
+  if (route_.method == LinearMethod::kCholmod) {
+    reused_analysis_ = d.analyzed && same_pattern(d.A, A);
+    d.A = A;
+    if (!reused_analysis_) d.cholmod.analyzePattern(d.A);
+    d.analyzed = true;
+    d.cholmod.factorize(d.A);
+    if (d.cholmod.info() != Eigen::Success) {
+      d.analyzed = false;
+      throw SolverError("CHOLMOD: the system matrix is not positive definite (" +
+                        std::to_string(A.rows()) + " unknowns)");
+    }
+  } else {
+    d.A = A;
+    if (route_.preconditioner == Preconditioner::kJacobi) {
+      d.cg_jacobi.compute(d.A);
+    } else {
+      d.cg_ic.compute(d.A);
+      if (d.cg_ic.info() != Eigen::Success)
+        throw SolverError("incomplete Cholesky preconditioner failed (" +
+                          std::to_string(A.rows()) + " unknowns)");
+    }
+  }
+  factorize_seconds_ = seconds_since(start);
+}
+
+void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  Impl& d = *impl_;
+  const double b_norm = b.norm();
+  if (b_norm == 0) {
+    x.setZero(b.size());
+    iterations_ = 0;
+    residual_ = 0;
+    return;
+  }
+  bool converged = true;
+  if (route_.method == LinearMethod::kCholmod) {
+    x = d.cholmod.solve(b);
+    iterations_ = 0;
+  } else if (route_.preconditioner == Preconditioner::kJacobi) {
+    iterations_ = run_cg(d.cg_jacobi, d.A, b, x);
+    converged = d.cg_jacobi.info() == Eigen::Success;
+  } else {
+    iterations_ = run_cg(d.cg_ic, d.A, b, x);
+    converged = d.cg_ic.info() == Eigen::Success;
+  }
+  residual_ = (d.A * x - b).norm() / b_norm;
+  if (!x.allFinite()) fail("linear solve produced non-finite values", residual_);
+  if (!converged)
+    fail("conjugate gradients did not converge in " + std::to_string(iterations_) + " iterations",
+         residual_);
+  if (route_.method == LinearMethod::kCholmod && residual_ > d.options.max_residual)
+    fail("CHOLMOD solve is inaccurate", residual_);
+}
+
+}  // namespace pdd::detail

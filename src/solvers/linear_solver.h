@@ -1,0 +1,58 @@
+// Private to src/solvers: the symmetric positive definite solve behind every
+// solver, by CHOLMOD (supernodal Cholesky with OpenBLAS) or by conjugate
+// gradients (Jacobi or incomplete Cholesky preconditioner) with a warm start.
+#pragma once
+
+#include <pdd/fem.h>
+#include <pdd/solvers.h>
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <string>
+
+namespace pdd::detail {
+
+// A linear route with kAuto resolved.
+struct LinearRoute {
+  LinearMethod method = LinearMethod::kCholmod;               // kCholmod or kConjugateGradient
+  Preconditioner preconditioner = Preconditioner::kJacobi;   // kJacobi or kIncompleteCholesky
+};
+
+class LinearSolver {
+ public:
+  LinearSolver(const LinearSolverOptions& options, const LinearRoute& route);
+  ~LinearSolver();
+  LinearSolver(LinearSolver&&) noexcept;
+  LinearSolver& operator=(LinearSolver&&) noexcept;
+
+  // Prepares solves with the SPD matrix A (all entries stored; CHOLMOD reads
+  // the lower triangle): CHOLMOD factorizes, reusing the symbolic analysis
+  // of the previous matrix when the sparsity pattern is the same; CG builds
+  // its preconditioner. A is copied. Throws SolverError when the
+  // factorization fails (A not positive definite numerically).
+  void compute(const SparseMatrix& A);
+
+  // Solves A x = b. On entry x is a warm start for CG (empty means none);
+  // CHOLMOD ignores it. Throws SolverError, naming the relative residual,
+  // when CG does not reach its tolerance, a direct solve's residual exceeds
+  // options.max_residual or the result is not finite.
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+
+  std::string method_name() const;  // "cholmod", "cg+jacobi" or "cg+ic"
+  int iterations() const { return iterations_; }  // of the last solve (0 for CHOLMOD)
+  double residual() const { return residual_; }   // |A x - b| / |b| of the last solve
+  double factorize_seconds() const { return factorize_seconds_; }  // of the last compute()
+  bool reused_analysis() const { return reused_analysis_; }        // last compute() kept the analysis
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  LinearRoute route_;
+  int iterations_ = 0;
+  double residual_ = 0;
+  double factorize_seconds_ = 0;
+  bool reused_analysis_ = false;
+};
+
+}  // namespace pdd::detail

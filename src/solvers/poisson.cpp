@@ -1,0 +1,95 @@
+// Screened Poisson reconstruction on the domain, Eqs. (13)-(14).
+#include "solvers/kinds.h"
+#include "solvers/linear_solver.h"
+#include "solvers/normal_field.h"
+#include "solvers/problem.h"
+
+#include <pdd/errors.h>
+
+namespace pdd::detail {
+namespace {
+
+class PoissonSolver final : public ImplicitSolver {
+ public:
+  PoissonSolver(const PoissonOptions& options, const LinearSolverOptions& linear)
+      : options_(options), linear_(linear, resolve_route(linear, SolverKind::kPoisson)) {
+    if (!(options.alpha >= 0)) throw InputError("Poisson solver: alpha must be >= 0");
+    if (!(options.kernel_size >= 0)) throw InputError("Poisson solver: kernel size must be >= 0");
+    if (options.kernel_size == 0 && !(options.kernel_spacing > 0))
+      throw InputError("Poisson solver: kernel spacing must be > 0");
+  }
+
+  std::vector<double> solve(const Domain& domain, const PointSet& points,
+                            const std::vector<double>* warm_start) override {
+    const auto start = Clock::now();
+    stats_ = SolverStats();
+    const Problem p = make_problem(domain, points, "Poisson solver",
+                                   "the Poisson solver needs oriented normals (Eq. 13)");
+    const double sigma = options_.kernel_size > 0
+                             ? options_.kernel_size
+                             : options_.kernel_spacing * mean_spacing(points.points);
+    if (!(sigma > 0)) throw InputError("Poisson solver: the normal kernel size is zero");
+
+    // Right-hand side Div N~ := G^T M_T n~, the integrated divergence (with
+    // the sign that makes Eq. (14) the normal equations of Eq. (13)).
+    const std::vector<Vec3> field = smoothed_normal_field(p.mesh, points.points, p.normals, sigma);
+    const Eigen::VectorXd volume = tet_volumes(p.mesh);
+    Eigen::VectorXd weighted(3 * volume.size());
+    for (Eigen::Index t = 0; t < volume.size(); ++t)
+      weighted.segment<3>(3 * t) = volume[t] * field[t];
+    const Eigen::VectorXd b = gradient_matrix(p.mesh).transpose() * weighted;
+
+    // Eq. (14) in units of l: [L + alpha l / |X| Phi^T Phi] F = Div N~.
+    const SparseMatrix L = cotangent_laplacian(p.mesh);
+    SparseMatrix A = L;
+    if (options_.alpha > 0) {
+      const double w = options_.alpha * p.length / static_cast<double>(p.num_points);
+      A += w * gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
+    } else {
+      // The original Poisson equation: f is defined up to a constant, fixed
+      // by the penalty L_00 f_0^2, which does not change the minimizers of
+      // Eq. (13) other than selecting f_0 = 0.
+      A.coeffRef(0, 0) += L.coeff(0, 0);
+    }
+    stats_.assembly_seconds = seconds_since(start);
+
+    linear_.compute(A);
+    const auto solve_start = Clock::now();
+    Eigen::VectorXd f = warm_start_vector(warm_start, p.mesh.vertices.size());
+    linear_.solve(b, f);
+    if (options_.median_shift) {
+      stats_.median_shift = median_at_samples(p.Phi, f);
+      f.array() -= stats_.median_shift;
+    }
+    stats_.solve_seconds = seconds_since(solve_start);
+
+    stats_.method = linear_.method_name();
+    stats_.iterations = linear_.iterations();
+    stats_.residual = linear_.residual();
+    stats_.factorize_seconds = linear_.factorize_seconds();
+    stats_.reused_analysis = linear_.reused_analysis();
+    stats_.num_vertices = p.mesh.vertices.size();
+    stats_.num_points = p.num_points;
+    stats_.nonzeros = static_cast<std::size_t>(A.nonZeros());
+    stats_.kernel_size = sigma;
+    return to_std(f);
+  }
+
+  const SolverStats& stats() const override { return stats_; }
+  bool needs_normals() const override { return true; }
+  bool needs_oriented_normals() const override { return true; }
+
+ private:
+  PoissonOptions options_;
+  LinearSolver linear_;
+  SolverStats stats_;
+};
+
+}  // namespace
+
+std::unique_ptr<ImplicitSolver> make_poisson_solver(const PoissonOptions& options,
+                                                    const LinearSolverOptions& linear) {
+  return std::make_unique<PoissonSolver>(options, linear);
+}
+
+}  // namespace pdd::detail

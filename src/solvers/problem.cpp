@@ -1,0 +1,93 @@
+#include "solvers/problem.h"
+
+#include <pdd/errors.h>
+#include <pdd/io.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace pdd::detail {
+
+Problem make_problem(const Domain& domain, const PointSet& points, const std::string& solver,
+                     const std::string& why_normals) {
+  if (points.size() == 0) throw InputError(solver + ": the point set is empty");
+  require_normals(points, solver, why_normals);
+  if (points.normals.size() != points.points.size())
+    throw InputError(solver + ": " + std::to_string(points.normals.size()) + " normals for " +
+                     std::to_string(points.points.size()) + " points");
+  Problem p;
+  p.mesh = domain.mesh();
+  try {
+    p.locations = locate_points(domain, points.points);
+  } catch (const InputError& e) {
+    throw InputError(solver + ": " + e.what());
+  }
+  p.Phi = sampling_matrix(p.mesh, p.locations);
+  Eigen::AlignedBox3d box;
+  for (const Vec3& x : points.points) box.extend(x);
+  p.length = box.sizes().maxCoeff();
+  if (!(p.length > 0)) throw InputError(solver + ": all points coincide");
+  p.num_points = points.size();
+  p.normals.reserve(points.size());
+  for (const Vec3& n : points.normals) p.normals.push_back(n.normalized());
+  return p;
+}
+
+double median_at_samples(const SparseMatrix& Phi, const Eigen::VectorXd& f) {
+  Eigen::VectorXd values = Phi * f;
+  const std::ptrdiff_t mid = values.size() / 2;
+  std::nth_element(values.data(), values.data() + mid, values.data() + values.size());
+  return values[mid];
+}
+
+std::vector<int> outer_vertices(const Domain& domain) {
+  std::vector<int> out;
+  for (int v = 0; v < static_cast<int>(domain.num_vertices()); ++v)
+    if (domain.on_boundary_sphere(v)) out.push_back(v);
+  if (!out.empty()) return out;
+  std::vector<char> hull(domain.num_vertices(), 0);
+  const auto& tets = domain.tets();
+  const auto& neighbors = domain.tet_neighbors();
+  for (std::size_t t = 0; t < tets.size(); ++t)
+    for (int i = 0; i < 4; ++i)
+      if (neighbors[t][i] < 0)
+        for (int k = 0; k < 4; ++k)
+          if (k != i) hull[tets[t][k]] = 1;
+  for (int v = 0; v < static_cast<int>(hull.size()); ++v)
+    if (hull[v]) out.push_back(v);
+  return out;
+}
+
+LinearRoute resolve_route(const LinearSolverOptions& options, SolverKind kind) {
+  // Measured (bench/solvers_bench.cpp, docs/benchmarks.md): the
+  // second-order Poisson system is solved fastest by CG with the Jacobi
+  // preconditioner from 10k vertices up; the fourth-order SSD and spectral
+  // systems (two-ring bi-Laplacian / Hessian terms) by CHOLMOD, CG needing
+  // hundreds (incomplete Cholesky) to thousands (Jacobi) of iterations.
+  LinearRoute route;
+  route.method = options.method;
+  if (route.method == LinearMethod::kAuto)
+    route.method =
+        kind == SolverKind::kPoisson ? LinearMethod::kConjugateGradient : LinearMethod::kCholmod;
+  route.preconditioner = options.preconditioner;
+  if (route.preconditioner == Preconditioner::kAuto)
+    route.preconditioner =
+        kind == SolverKind::kPoisson ? Preconditioner::kJacobi : Preconditioner::kIncompleteCholesky;
+  return route;
+}
+
+Eigen::VectorXd warm_start_vector(const std::vector<double>* warm_start, std::size_t n) {
+  if (warm_start == nullptr) return {};
+  if (warm_start->size() != n)
+    throw std::invalid_argument("solver: the warm start has " + std::to_string(warm_start->size()) +
+                                " values for " + std::to_string(n) + " vertices");
+  return Eigen::Map<const Eigen::VectorXd>(warm_start->data(), static_cast<Eigen::Index>(n));
+}
+
+std::vector<double> to_std(const Eigen::VectorXd& f) {
+  return std::vector<double>(f.data(), f.data() + f.size());
+}
+
+}  // namespace pdd::detail

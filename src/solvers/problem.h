@@ -1,0 +1,54 @@
+// Private to src/solvers: what the three solvers share — the domain's mesh,
+// where the samples fall in it, the length unit, the median shift, timing.
+#pragma once
+
+#include <pdd/fem.h>
+#include <pdd/solvers.h>
+
+#include "solvers/linear_solver.h"
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+namespace pdd::detail {
+
+using Clock = std::chrono::steady_clock;
+inline double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The samples inside the domain.
+struct Problem {
+  TetMesh mesh;                    // domain.mesh()
+  std::vector<Location> locations; // tet and barycentric coordinates of each sample
+  SparseMatrix Phi;                // sampling matrix, |X| x |V|
+  std::vector<Vec3> normals;       // the samples' normals scaled to unit length
+  double length = 1;               // l: largest side of the samples' bounding box
+  std::size_t num_points = 0;
+};
+
+// Validates the inputs (at least one sample; normals, when required, one per
+// point: InputError naming `solver` otherwise) and locates the samples.
+Problem make_problem(const Domain& domain, const PointSet& points, const std::string& solver,
+                     const std::string& why_normals);
+
+// The median of the values of f at the samples (Phi f).
+double median_at_samples(const SparseMatrix& Phi, const Eigen::VectorXd& f);
+
+// Vertices where f must be positive (outside): those flagged on the domain's
+// bounding sphere, or, when none is flagged, those on the convex hull.
+std::vector<int> outer_vertices(const Domain& domain);
+
+// The linear route for `kind`, kAuto resolved to the one measured fastest
+// (docs/benchmarks.md, "Solvers").
+LinearRoute resolve_route(const LinearSolverOptions& options, SolverKind kind);
+
+// The warm start as an Eigen vector (empty if absent); std::invalid_argument
+// when it does not have one value per vertex.
+Eigen::VectorXd warm_start_vector(const std::vector<double>* warm_start, std::size_t n);
+
+// Copies to std::vector.
+std::vector<double> to_std(const Eigen::VectorXd& f);
+
+}  // namespace pdd::detail

@@ -1,0 +1,43 @@
+// The solver interface: names of the kinds and the factory.
+#include <pdd/errors.h>
+#include <pdd/solvers.h>
+
+#include "solvers/kinds.h"
+
+#include <algorithm>
+#include <cctype>
+
+namespace pdd {
+
+ImplicitSolver::~ImplicitSolver() = default;
+
+SolverKind parse_solver_kind(const std::string& name) {
+  std::string lower = name;
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (lower == "poisson") return SolverKind::kPoisson;
+  if (lower == "ssd") return SolverKind::kSsd;
+  if (lower == "spectral") return SolverKind::kSpectral;
+  throw InputError("unknown solver \"" + name + "\" (expected poisson, ssd or spectral)");
+}
+
+std::string to_string(SolverKind kind) {
+  switch (kind) {
+    case SolverKind::kPoisson: return "poisson";
+    case SolverKind::kSsd: return "ssd";
+    case SolverKind::kSpectral: return "spectral";
+  }
+  return "unknown";
+}
+
+std::unique_ptr<ImplicitSolver> make_solver(const SolverOptions& options) {
+  switch (options.kind) {
+    case SolverKind::kPoisson: return detail::make_poisson_solver(options.poisson, options.linear);
+    case SolverKind::kSsd: return detail::make_ssd_solver(options.ssd, options.linear);
+    case SolverKind::kSpectral:
+      return detail::make_spectral_solver(options.spectral, options.linear);
+  }
+  throw std::invalid_argument("make_solver: unknown solver kind");
+}
+
+}  // namespace pdd

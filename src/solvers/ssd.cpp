@@ -1,0 +1,85 @@
+// Smooth signed distance reconstruction [CT11] on the domain, Eq. (15).
+#include "solvers/kinds.h"
+#include "solvers/linear_solver.h"
+#include "solvers/problem.h"
+
+#include <pdd/errors.h>
+
+namespace pdd::detail {
+namespace {
+
+class SsdSolver final : public ImplicitSolver {
+ public:
+  SsdSolver(const SsdOptions& options, const LinearSolverOptions& linear)
+      : options_(options), linear_(linear, resolve_route(linear, SolverKind::kSsd)) {
+    if (!(options.alpha > 0) || !(options.beta > 0) || !(options.gamma >= 0))
+      throw InputError("SSD solver: alpha and beta must be > 0 and gamma >= 0");
+  }
+
+  std::vector<double> solve(const Domain& domain, const PointSet& points,
+                            const std::vector<double>* warm_start) override {
+    const auto start = Clock::now();
+    stats_ = SolverStats();
+    const Problem p = make_problem(domain, points, "SSD solver",
+                                   "the SSD solver fits the gradient of f to oriented normals (Eq. 15)");
+    const double nx = static_cast<double>(p.num_points);
+    const std::size_t nt = p.mesh.tets.size();
+
+    // S^T S counts the samples in each tet and S^T N sums their normals, so
+    // G^T S^T S G = G^T diag(count_t I) G and G^T S^T N = G^T (sum of n_p per tet).
+    std::vector<Eigen::Matrix3d> count(nt, Eigen::Matrix3d::Zero());
+    Eigen::VectorXd normal_sum = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(nt));
+    for (std::size_t i = 0; i < p.num_points; ++i) {
+      const int t = p.locations[i].tet;
+      count[t] += Eigen::Matrix3d::Identity();
+      normal_sum.segment<3>(3 * t) += p.normals[i];
+    }
+    const double beta = options_.beta / nx;
+    const Eigen::VectorXd b = beta * (gradient_matrix(p.mesh).transpose() * normal_sum);
+
+    // Eq. (15) in units of l: f(p) is a length (1/l^2) and the Hessian an
+    // inverse length (l^2); |T| is the volume of the domain, as in CT11.
+    SparseMatrix A = beta * weighted_stiffness(p.mesh, count);
+    A += (options_.alpha / (p.length * p.length * nx)) *
+         gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
+    if (options_.gamma > 0) {
+      const double gamma = options_.gamma * p.length * p.length / tet_volumes(p.mesh).sum();
+      A += gamma * hessian_energy(p.mesh);  // H^T M~_V^-1 H
+    }
+    stats_.assembly_seconds = seconds_since(start);
+
+    linear_.compute(A);
+    const auto solve_start = Clock::now();
+    Eigen::VectorXd f = warm_start_vector(warm_start, p.mesh.vertices.size());
+    linear_.solve(b, f);
+    stats_.solve_seconds = seconds_since(solve_start);
+
+    stats_.method = linear_.method_name();
+    stats_.iterations = linear_.iterations();
+    stats_.residual = linear_.residual();
+    stats_.factorize_seconds = linear_.factorize_seconds();
+    stats_.reused_analysis = linear_.reused_analysis();
+    stats_.num_vertices = p.mesh.vertices.size();
+    stats_.num_points = p.num_points;
+    stats_.nonzeros = static_cast<std::size_t>(A.nonZeros());
+    return to_std(f);
+  }
+
+  const SolverStats& stats() const override { return stats_; }
+  bool needs_normals() const override { return true; }
+  bool needs_oriented_normals() const override { return true; }
+
+ private:
+  SsdOptions options_;
+  LinearSolver linear_;
+  SolverStats stats_;
+};
+
+}  // namespace
+
+std::unique_ptr<ImplicitSolver> make_ssd_solver(const SsdOptions& options,
+                                                const LinearSolverOptions& linear) {
+  return std::make_unique<SsdSolver>(options, linear);
+}
+
+}  // namespace pdd::detail
