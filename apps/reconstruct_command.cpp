@@ -4,6 +4,12 @@
 #include <pdd/pipeline.h>
 #include <pdd/solvers.h>
 
+#include <pdd/report.h>
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -17,14 +23,19 @@ namespace pdd::cli {
 namespace {
 
 // The arguments of `pdd reconstruct`. The pipeline's options carry the
-// paper's defaults (§3.2, §3.3); the command line only exposes them.
+// paper's defaults (§3.2-§3.4); the command line only exposes them.
 struct ReconstructArgs {
   std::string input;          // the point set (.ply .xyz .pwn .xyzn .off .obj)
   std::string output;         // the mesh (.ply .off .obj)
   std::string domain_output;  // "" or a .vtu for the final domain with f
+  std::string stats_output;   // "" or a .json for the per-iteration statistics
+  std::string iterations_dir; // "" or a folder for every iteration's isosurface and domain
   std::string solver = to_string(ReconstructOptions{}.solver.kind);  // ssd | poisson | spectral
+  std::string strategy = to_string(ReconstructOptions{}.strategy);   // progressive | ...
+  std::string sizing = "uniform";                                     // uniform | adaptive
   ReconstructOptions options;
   bool ascii = false;  // PLY output as ASCII instead of binary
+  bool quiet = false;  // no progress line, no table
 };
 
 // Why the chosen solver needs normals, for the message when they are absent.
@@ -40,11 +51,43 @@ std::string why_normals(SolverKind solver) {
   return "the SSD solver fits the gradient of f to oriented normals (Eq. 15)";
 }
 
+// The progress line on stderr: rewritten in place on a terminal, one plain
+// line per stage otherwise.
+ProgressCallback progress_printer() {
+  const bool terminal = ::isatty(STDERR_FILENO);
+  return [terminal](const Progress& p) {
+    char line[160];
+    std::snprintf(line, sizeof line, "pdd: %-10s iteration %2d  %9zu vertices  %7.1f s",
+                  p.stage.c_str(), p.iteration, p.vertices, p.elapsed_seconds);
+    if (terminal) {
+      std::cerr << "\r" << line << "\033[K" << std::flush;
+    } else {
+      std::cerr << line << "\n";
+    }
+    return true;
+  };
+}
+
+// --save-iterations: the isosurface and the domain after every solve (Figure 7).
+IterationCallback iteration_writer(const std::string& folder, bool ascii) {
+  std::filesystem::create_directories(folder);
+  return [folder, ascii](const IterationStats& stats, const Domain& domain,
+                         const TriangleMesh& isosurface) {
+    char name[64];
+    std::snprintf(name, sizeof name, "/iteration_%02d", stats.iteration);
+    write_mesh(folder + name + "_isosurface.ply", isosurface, {ascii});
+    write_domain_vtu(folder + name + "_domain.vtu", domain.mesh(), domain.f());
+  };
+}
+
 void reconstruct(ReconstructArgs& args) {
   args.options.solver.kind = parse_solver_kind(args.solver);
+  args.options.strategy = parse_domain_strategy(args.strategy);
+  args.options.sizing = parse_sizing_kind(args.sizing);
   // Output paths first, so that a typo costs nothing.
   check_output_path(args.output, OutputKind::kMesh);
   if (!args.domain_output.empty()) check_output_path(args.domain_output, OutputKind::kDomain);
+  if (!args.stats_output.empty()) check_output_path(args.stats_output, OutputKind::kStatistics);
 
   ValidationReport report;
   const PointSet points = read_points(args.input, &report);
@@ -53,9 +96,25 @@ void reconstruct(ReconstructArgs& args) {
   }
   require_normals(points, args.input, why_normals(args.options.solver.kind));
 
-  // The progressive pipeline (§3) comes here: reconstruct(points,
-  // args.options), then write_mesh(args.output, mesh, {args.ascii}).
-  throw std::runtime_error("reconstruct: the progressive pipeline is not implemented yet");
+  if (!args.quiet) args.options.progress = progress_printer();
+  if (!args.iterations_dir.empty())
+    args.options.on_iteration = iteration_writer(args.iterations_dir, args.ascii);
+  const Result result = pdd::reconstruct(points, args.options);
+  if (!args.quiet && ::isatty(STDERR_FILENO)) std::cerr << "\n";
+  if (result.mesh.faces.empty())
+    throw std::runtime_error("reconstruct: " + args.input +
+                             ": the isosurface is empty (the solver found no surface)");
+
+  write_mesh(args.output, result.mesh, {args.ascii});
+  if (!args.domain_output.empty())
+    write_domain_vtu(args.domain_output, result.domain.mesh(), result.domain.f());
+  if (!args.stats_output.empty()) {
+    const std::string json = statistics_json(result, args.options);
+    write_atomically(args.stats_output, [&](std::ostream& out) { out << json; });
+  }
+  if (!args.quiet) std::cout << statistics_table(result);
+  std::cout << "pdd: wrote " << args.output << " (" << result.mesh.faces.size() << " triangles, "
+            << result.mesh.vertices.size() << " vertices)\n";
 }
 
 // A validator accepting numbers strictly greater than `bound`.
@@ -81,11 +140,56 @@ void add_reconstruct_command(CLI::App& app) {
       "reconstruct", "Reconstruct a closed triangle mesh from a point set with normals");
   cmd->add_option("INPUT", args->input, "Point set: .ply .xyz .pwn .xyzn .off .obj")->required();
   cmd->add_option("-o,--output", args->output, "Output mesh: .ply .off .obj")->required();
-  cmd->add_option("--domain", args->domain_output,
-                  "Also write the final domain (tetrahedra and f) as a .vtu for ParaView");
   cmd->add_option("--solver", args->solver, "Implicit solver (§3.5)")
       ->check(CLI::IsMember({"ssd", "poisson", "spectral"}))
       ->capture_default_str();
+  cmd->add_option("--domain", args->strategy,
+                  "How the domain is built (§4.2): progressive (ours), direct (refine without "
+                  "optimizer or intermediate solves), input (input points + Delaunay "
+                  "refinement), octree (octree nodes)")
+      ->check(CLI::IsMember({"progressive", "direct", "input", "octree"}))
+      ->capture_default_str();
+  cmd->add_option("--sizing", args->sizing,
+                  "Sizing field (§3.4): uniform (target area or edge) or adaptive (curvature)")
+      ->check(CLI::IsMember({"uniform", "adaptive"}))
+      ->capture_default_str();
+  cmd->add_option("--target-edge", args->options.target_edge_length,
+                  "Uniform sizing: target edge length of the output triangles "
+                  "(default: the input's average spacing)")
+      ->check(greater_than(0));
+  cmd->add_option("--target-area", args->options.target_area,
+                  "Uniform sizing: target isofacet area (overrides --target-edge)")
+      ->check(greater_than(0));
+  cmd->add_option("--tolerance", args->options.adaptive.tolerance,
+                  "Adaptive sizing: distance tolerance d of s = 4 sqrt(3) (2d/c - d^2) "
+                  "(default: s at the median curvature equals the uniform default)")
+      ->check(greater_than(0));
+  cmd->add_option("--gradation", args->options.adaptive.gradation,
+                  "Adaptive sizing: exponent lambda of the curvature mapping")
+      ->check(greater_than(0))
+      ->capture_default_str();
+  cmd->add_option("--iterations", args->options.max_iterations,
+                  "At most this many solve-optimize-refine iterations")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--max-vertices", args->options.max_vertices,
+                  "Stop refining once the domain has this many vertices")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--optimizer-rounds", args->options.optimizer_rounds,
+                  "Optimizer passes per iteration (§3.3)")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  cmd->add_option("--domain-out", args->domain_output,
+                  "Also write the final domain (tetrahedra and f) as a .vtu for ParaView");
+  cmd->add_option("--stats", args->stats_output, "Write per-iteration statistics as JSON");
+  cmd->add_option("--save-iterations", args->iterations_dir,
+                  "Write the isosurface (.ply) and domain (.vtu) of every iteration to this "
+                  "folder (created if missing)");
+  cmd->add_option("--threads", args->options.threads, "Worker threads (0: all cores)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
+  cmd->add_flag("--quiet", args->quiet, "No progress line and no statistics table");
   cmd->add_option("--enlarge-ratio", args->options.domain.enlarge_ratio,
                   "Radius of the initial domain sphere over that of the points' bounding "
                   "sphere (§3.2)")

@@ -11,7 +11,7 @@
 #   --domain S       passed to `pdd reconstruct --domain S` (e.g. octree for the
 #                    baseline); the table then goes to shared_data_S.md
 #   --only REGEX     only the inputs whose name (e.g. bunny_clean) matches
-#   --data DIR       the data folder (default: /work/shared/data)
+#   --data DIR       the data folder (default: ../shared/data beside the repository)
 #   --keep DIR       keep the output meshes in DIR (default: a temporary folder,
 #                    removed at the end)
 #
@@ -25,7 +25,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 pdd="$root/build/pdd"
 domain=""
 only=""
-data="/work/shared/data"
+data="$root/../shared/data"
 keep=""
 
 usage() { sed -n '/^#   bench\/shared_data.sh/,/removed at the end)/s/^# \{0,1\}//p' "${BASH_SOURCE[0]}" >&2; exit "${1:-2}"; }

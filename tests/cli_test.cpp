@@ -153,38 +153,50 @@ TEST_F(CliTest, BadOutputIsRefusedBeforeReading) {
   EXPECT_EQ(folder.code, 2);
   EXPECT_NE(folder.err.find("does not exist"), std::string::npos) << folder.err;
   const Outcome domain = pdd("reconstruct '" + path("absent.ply") + "' -o '" + path("out.ply") +
-                             "' --domain '" + path("d.vtk") + "'");
+                             "' --domain-out '" + path("d.vtk") + "'");
   EXPECT_EQ(domain.code, 2);
   EXPECT_NE(domain.err.find(path("d.vtk") + ": unknown extension"), std::string::npos)
       << domain.err;
 }
 
-TEST_F(CliTest, ValidInputStopsAtTheMissingPipelineLeavingNoFile) {
-  PointSet points = test::sample_sphere(200);
+TEST_F(CliTest, ReconstructWritesTheMeshStatisticsDomainAndIterations) {
+  PointSet points = test::sample_sphere(600);
   points.points.push_back(points.points[5]);
   points.normals.push_back(points.normals[5]);
   points.points.push_back(points.points[9]);
   points.normals.push_back(points.normals[9]);
   write_points(path("in.ply"), points);
   const Outcome run = pdd("reconstruct '" + path("in.ply") + "' -o '" + path("out.ply") +
-                          "' --domain '" + path("d.vtu") + "'");
-  EXPECT_EQ(run.code, 1);
+                          "' --target-edge 0.2 --stats '" + path("stats.json") +
+                          "' --domain-out '" + path("d.vtu") + "' --save-iterations '" +
+                          path("steps") + "'");
+  EXPECT_EQ(run.code, 0) << run.err;
   EXPECT_NE(run.err.find("pdd: warning: " + path("in.ply") + ": merged 2 duplicate points"),
             std::string::npos)
       << run.err;
-  EXPECT_NE(
-      run.err.find("pdd: error: reconstruct: the progressive pipeline is not implemented yet\n"),
-      std::string::npos)
-      << run.err;
-  EXPECT_EQ(entries(), std::vector<std::string>{"in.ply"});
+  EXPECT_NE(run.out.find("pdd: wrote " + path("out.ply")), std::string::npos) << run.out;
+  const TriangleMesh mesh = read_mesh(path("out.ply"));
+  EXPECT_GT(mesh.faces.size(), 100u);
+  for (const Vec3& v : mesh.vertices) EXPECT_NEAR(v.norm(), 1.0, 0.05);
+  const std::string stats = slurp(path("stats.json"));
+  EXPECT_NE(stats.find("\"triangles\": " + std::to_string(mesh.faces.size())), std::string::npos)
+      << stats;
+  EXPECT_NE(slurp(path("d.vtu")).find("<UnstructuredGrid>"), std::string::npos);
+  EXPECT_TRUE(fs::exists(path("steps/iteration_01_isosurface.ply")));
+  EXPECT_TRUE(fs::exists(path("steps/iteration_01_domain.vtu")));
+}
 
-  // The bundled scan reads and validates too.
-  const Outcome kitten = pdd("reconstruct '" + std::string(PDD_SOURCE_DIR) +
-                             "/data/kitten_scan.ply' -o '" + path("kitten.off") + "'");
-  EXPECT_EQ(kitten.code, 1);
-  EXPECT_EQ(kitten.err,
-            "pdd: error: reconstruct: the progressive pipeline is not implemented yet\n");
-  EXPECT_EQ(entries(), std::vector<std::string>{"in.ply"});
+TEST_F(CliTest, BadOptionValuesExitTwoLeavingNoFile) {
+  write_points(path("in.ply"), test::sample_sphere(100));
+  const std::vector<std::string> options = {"--solver octree", "--domain grid", "--target-edge -1",
+                                            "--iterations 0", "--stats '" + path("s.txt") + "'"};
+  for (const std::string& option : options) {
+    const Outcome run =
+        pdd("reconstruct '" + path("in.ply") + "' -o '" + path("out.ply") + "' " + option);
+    EXPECT_EQ(run.code, 2) << option << ": " << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << option << ": " << run.err;
+    EXPECT_EQ(entries(), std::vector<std::string>{"in.ply"}) << option;
+  }
 }
 
 }  // namespace

@@ -135,7 +135,7 @@ void write_domain_vtu(const std::string& path, const TetMesh& mesh, const std::v
 // ------------------------------------------------------------ output paths
 
 // What kind of file an output path names.
-enum class OutputKind { kMesh, kPoints, kDomain };
+enum class OutputKind { kMesh, kPoints, kDomain, kStatistics };
 
 // Runs `write` on a stream into a new temporary file in path's folder, then
 // renames the temporary to `path`. When `write` throws or any write, flush or
@@ -145,7 +145,8 @@ enum class OutputKind { kMesh, kPoints, kDomain };
 void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 // Checks, before any work is done, that `path` has an extension write_mesh
-// (kMesh), write_points (kPoints) or write_domain_vtu (kDomain) accepts, that
+// (kMesh), write_points (kPoints) or write_domain_vtu (kDomain) accepts, or
+// .json (kStatistics), that
 // it is not a folder and that its folder exists and is writable. Throws
 // InputError naming the path otherwise.
 void check_output_path(const std::string& path, OutputKind kind);

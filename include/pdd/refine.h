@@ -45,4 +45,11 @@ RefinementStats refine(Domain& domain, const SizingField& sizing, std::mt19937_6
 IsofacetAreaStats isofacet_area_stats(const std::vector<Isofacet>& facets,
                                       const std::vector<double>& targets);
 
+// The isofacets of the domain's f against the sizing field.
+IsofacetAreaStats isofacet_area_stats(const Domain& domain, const SizingField& sizing);
+
+// The sizing field is met: isofacets are on average no larger than their
+// target and none calls for a deterministic split (r_t < 4, rules 1-4).
+bool sizing_met(const IsofacetAreaStats& stats);
+
 }  // namespace pdd

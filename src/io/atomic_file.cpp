@@ -149,6 +149,9 @@ void check_output_path(const std::string& path, OutputKind kind) {
     case OutputKind::kDomain:
       io::format_of(path, {io::Format::kVtu}, "domain");
       break;
+    case OutputKind::kStatistics:
+      io::format_of(path, {io::Format::kJson}, "statistics");
+      break;
   }
   const std::string problem = folder_problem(path);
   if (!problem.empty()) io::fail(path, "cannot write: " + problem);

@@ -39,6 +39,7 @@ TriangleMesh read_mesh(const std::string& path) {
       break;
     case io::Format::kXyz:
     case io::Format::kVtu:
+    case io::Format::kJson:
       break;  // not mesh formats; format_of has thrown
   }
   const std::vector<Vec3>& points = raw.vertices.points;
@@ -92,6 +93,7 @@ void write_mesh(const std::string& path, const TriangleMesh& mesh,
         break;
       case io::Format::kXyz:
       case io::Format::kVtu:
+      case io::Format::kJson:
         break;
     }
   });

@@ -30,6 +30,7 @@ PointSet read_points(const std::string& path, ValidationReport* report,
       raw = io::read_obj(path, data, io::Content::kVertices).vertices;
       break;
     case io::Format::kVtu:
+    case io::Format::kJson:
       break;  // not a point format; format_of has thrown
   }
   PointSet points;
@@ -60,6 +61,7 @@ void write_points(const std::string& path, const PointSet& points,
         io::write_obj(out, points.points, points.normals, {});
         break;
       case io::Format::kVtu:
+      case io::Format::kJson:
         break;
     }
   });

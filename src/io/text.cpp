@@ -19,6 +19,7 @@ struct FormatName {
 constexpr FormatName kExtensions[] = {
     {".ply", Format::kPly}, {".xyz", Format::kXyz}, {".pwn", Format::kXyz}, {".xyzn", Format::kXyz},
     {".off", Format::kOff}, {".obj", Format::kObj}, {".vtu", Format::kVtu},
+    {".json", Format::kJson},
 };
 
 std::string lowercase(std::string s) {

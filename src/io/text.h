@@ -13,7 +13,7 @@
 
 namespace pdd::io {
 
-enum class Format { kPly, kXyz, kOff, kObj, kVtu };
+enum class Format { kPly, kXyz, kOff, kObj, kVtu, kJson };
 
 // The format named by the path's extension (case-insensitive). `allowed`
 // lists the formats the caller handles and `what` names what the file holds

@@ -35,6 +35,15 @@ IsofacetAreaStats isofacet_area_stats(const std::vector<Isofacet>& facets,
   return s;
 }
 
+IsofacetAreaStats isofacet_area_stats(const Domain& domain, const SizingField& sizing) {
+  const std::vector<Isofacet> facets = isofacets(domain.mesh(), domain.f());
+  return isofacet_area_stats(facets, sizing.target_areas(domain, facets));
+}
+
+bool sizing_met(const IsofacetAreaStats& stats) {
+  return stats.count > 0 && stats.mean_ratio <= 1.0 && stats.max_ratio < 4.0;
+}
+
 namespace {
 
 // Collects the points to insert, each once: edge points are keyed by the

@@ -1,0 +1,106 @@
+// The progressive reconstruction of §3.1 (Figure 3): initial domain, then
+// iterations of solve -> optimize -> refine, then a final solve on the
+// optimized domain and marching tetrahedra. The iterations stop when the
+// sizing field is met (refine.h, sizing_met), when a refinement pass splits
+// few tets, at max_iterations or at max_vertices. Also the three other domain
+// strategies of §4.2, for comparison.
+#pragma once
+
+#include <pdd/domain.h>
+#include <pdd/optimize.h>
+#include <pdd/sizing.h>
+#include <pdd/solvers.h>
+#include <pdd/types.h>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace pdd {
+
+// §4.2: how the domain on which the final solve happens is built.
+enum class DomainStrategy {
+  kProgressive,  // ours: solve -> optimize -> refine iterations
+  kDirect,       // our refiner on the interpolated first solution, no optimizer, one final solve
+  kInput,        // all input points + Delaunay refinement, one solve
+  kOctree,       // all nodes of an octree refined from the input density, one solve
+};
+DomainStrategy parse_domain_strategy(const std::string& name);  // InputError when unknown
+std::string to_string(DomainStrategy strategy);
+
+enum class SizingKind { kUniform, kAdaptive };
+SizingKind parse_sizing_kind(const std::string& name);  // InputError when unknown
+
+// Where the run is, for the progress callback.
+struct Progress {
+  std::string stage;        // "initialize", "solve", "optimize", "refine", "contour"
+  int iteration = 0;        // 1-based; 0 during initialization, the final solve is last + 1
+  std::size_t vertices = 0;
+  double elapsed_seconds = 0;
+};
+
+// Returning false from the callback stops the run cleanly (Result::cancelled).
+using ProgressCallback = std::function<bool(const Progress&)>;
+
+struct IterationStats;
+class Domain;
+// Called after each solve with the domain, f and its isosurface (Figure 7).
+using IterationCallback =
+    std::function<void(const IterationStats&, const Domain&, const TriangleMesh& isosurface)>;
+
+struct ReconstructOptions {
+  DomainStrategy strategy = DomainStrategy::kProgressive;
+  DomainOptions domain;        // §3.2: sphere 1.4 r, 100 points, radius-edge 1.3
+  SolverOptions solver;        // §3.5: SSD by default
+  OptimizerOptions optimizer;  // §3.3: lambda_a = lambda_m = 3
+  int optimizer_rounds = 2;    // optimizer passes per iteration (the paper's Figure 7 shows one or
+                               // more per iteration; two measured better, docs/benchmarks.md)
+
+  SizingKind sizing = SizingKind::kUniform;
+  double target_area = 0;         // uniform: the target isofacet area; 0: from target_edge_length
+  double target_edge_length = 0;  // uniform: the target edge; 0: the input's average spacing
+  AdaptiveSizingOptions adaptive;  // adaptive sizing of §3.4
+  std::shared_ptr<const SizingField> custom_sizing;  // library only: overrides `sizing` when set
+
+  int max_iterations = 12;             // solve-optimize-refine iterations at most
+  std::size_t max_vertices = 3000000;  // stop refining once the domain has this many vertices
+  double min_refined_fraction = 0.02;  // stop once a refinement pass splits fewer crossing tets
+  int octree_depth = 0;                // kOctree: 0 = finest cells about the input spacing
+  std::uint64_t seed = 0;              // the refiner's random draws (rule 5 of §3.4)
+  int threads = 0;                     // 0 = all cores
+  ProgressCallback progress;           // optional
+  IterationCallback on_iteration;      // optional
+};
+
+// Statistics of one iteration (the columns of Table 1 and Figure 15).
+struct IterationStats {
+  int iteration = 0;
+  std::size_t vertices = 0;                  // (3) of Table 1, after the solve
+  std::size_t vertices_near_isosurface = 0;  // (2): vertices of tets crossed by f = 0
+  double parsimony = 0;                      // (4) = (2) / (3)
+  std::size_t isovertices = 0;               // (1): vertices of the isosurface
+  std::size_t triangles = 0;
+  SolverStats solver;
+  int optimizer_cg_iterations = 0;
+  int rejected_moves = 0;
+  int trisected = 0, bisected = 0, inserted_points = 0;
+  double mean_min_angle = 0;     // of the isosurface's triangles, degrees
+  double fraction_below_30 = 0;  // of the isosurface's triangles
+  double seconds_solve = 0, seconds_optimize = 0, seconds_refine = 0, seconds_contour = 0;
+};
+
+struct Result {
+  TriangleMesh mesh;  // the isosurface of the final solve, outward-facing
+  Domain domain;      // the final domain, f = the final solution
+  std::vector<IterationStats> iterations;  // the last entry is the final solve
+  double seconds = 0;
+  bool cancelled = false;  // the progress callback returned false: mesh is empty
+};
+
+// Reconstructs a closed surface from `points`. Throws InputError for bad
+// input or options, SolverError when a solve fails.
+Result reconstruct(const PointSet& points, const ReconstructOptions& options = {});
+
+}  // namespace pdd

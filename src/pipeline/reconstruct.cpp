@@ -1,0 +1,269 @@
+// The progressive loop of §3.1 (Figure 3) and the domain strategies of §4.2.
+#include <pdd/contour.h>
+#include <pdd/errors.h>
+#include <pdd/pipeline.h>
+#include <pdd/quality.h>
+#include <pdd/refine.h>
+
+#include "pipeline/octree_domain.h"
+
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <optional>
+#include <random>
+
+namespace pdd {
+
+namespace {
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Thrown by Run::report when the callback asks to stop; caught in reconstruct().
+struct Cancelled {};
+
+std::shared_ptr<const SizingField> make_sizing(const PointSet& points,
+                                               const ReconstructOptions& options) {
+  if (options.custom_sizing) return options.custom_sizing;
+  if (options.sizing == SizingKind::kAdaptive) return adaptive_sizing(points, options.adaptive);
+  double area = options.target_area;
+  if (area <= 0)
+    area = options.target_edge_length > 0 ? area_for_edge_length(options.target_edge_length)
+                                          : default_target_area(points);
+  return uniform_sizing(area);
+}
+
+class Run {
+ public:
+  Run(const PointSet& points, const ReconstructOptions& options)
+      : points_(points),
+        options_(options),
+        solver_(make_solver(options.solver)),
+        rng_(options.seed),
+        start_(Clock::now()) {}
+
+  Result progressive() {
+    Domain domain = initial_domain();
+    const auto sizing = make_sizing(points_, options_);
+    for (int it = 1; it <= options_.max_iterations; ++it) {
+      IterationStats stats = solve(domain, it);
+      optimize(domain, it, stats);
+      const bool over_budget = domain.num_vertices() >= options_.max_vertices;
+      bool converged = sizing_met(isofacet_area_stats(domain, *sizing));
+      if (!over_budget && !converged) {
+        report("refine", it, domain);
+        const auto t = Clock::now();
+        const RefinementStats refined = refine(domain, *sizing, rng_);
+        stats.seconds_refine = seconds_since(t);
+        stats.trisected = refined.trisected;
+        stats.bisected = refined.bisected;
+        stats.inserted_points = refined.inserted_points;
+        converged = refined.trisected + refined.bisected <
+                    options_.min_refined_fraction * refined.crossing_tets;
+      }
+      result_.iterations.push_back(stats);
+      if (over_budget || converged) break;
+    }
+    // Figure 3: the final solve happens on the optimized domain.
+    return finish(std::move(domain), /*optimize_first=*/true);
+  }
+
+  // §4.2 (3): our refiner on the first solution, interpolated, no optimizer
+  // but for one ASAP round before the final solve, as the paper's
+  // non-optimized strategy does (§4.5: otherwise the solver fails).
+  Result direct() {
+    Domain domain = initial_domain();
+    const auto sizing = make_sizing(points_, options_);
+    result_.iterations.push_back(solve(domain, 1));
+    for (int it = 1; it <= options_.max_iterations; ++it) {
+      if (domain.num_vertices() >= options_.max_vertices ||
+          sizing_met(isofacet_area_stats(domain, *sizing)))
+        break;
+      report("refine", it, domain);
+      const RefinementStats refined = refine(domain, *sizing, rng_);
+      if (refined.trisected + refined.bisected <
+          options_.min_refined_fraction * refined.crossing_tets)
+        break;
+    }
+    OptimizerOptions asap_only = options_.optimizer;
+    asap_only.mid_edge = false;
+    optimize_domain(domain, asap_only);
+    return finish(std::move(domain));
+  }
+
+  // §4.2 (2): all input points, then Delaunay refinement. Around unevenly
+  // spaced samples a bound below 2 need not terminate (Shewchuk), so the
+  // bound here is at least 2.
+  Result input() {
+    Domain domain = initial_domain();
+    domain.insert(points_.points);
+    domain.delaunay_refine(std::max(2.0, options_.domain.radius_edge_bound),
+                           options_.domain.max_refinement_points);
+    return finish(std::move(domain));
+  }
+
+  // §4.2 (1): all nodes of an octree refined from the input density.
+  Result octree() {
+    Domain domain = initial_domain();
+    detail::insert_octree_nodes(domain, points_, options_.octree_depth);
+    return finish(std::move(domain));
+  }
+
+ private:
+  Domain initial_domain() {
+    report("initialize", 0, Domain());
+    return Domain::initial(points_, options_.domain);
+  }
+
+  // Calls the progress callback; a false answer cancels the run.
+  void report(const char* stage, int iteration, const Domain& domain) {
+    if (!options_.progress) return;
+    Progress p;
+    p.stage = stage;
+    p.iteration = iteration;
+    p.vertices = domain.num_vertices();
+    p.elapsed_seconds = seconds_since(start_);
+    if (!options_.progress(p)) throw Cancelled{};
+  }
+
+  // Solves on the domain (warm-started from the current f) and measures the
+  // isosurface; the contour is kept for the final iteration.
+  IterationStats solve(Domain& domain, int iteration) {
+    IterationStats stats;
+    stats.iteration = iteration;
+    report("solve", iteration, domain);
+    auto t = Clock::now();
+    const std::vector<double> warm = domain.f();
+    domain.set_f(solver_->solve(domain, points_, &warm));
+    stats.seconds_solve = seconds_since(t);
+    stats.solver = solver_->stats();
+
+    report("contour", iteration, domain);
+    t = Clock::now();
+    contour_ = marching_tetrahedra(domain.mesh(), domain.f());
+    stats.seconds_contour = seconds_since(t);
+    measure(domain, stats);
+    if (options_.on_iteration) options_.on_iteration(stats, domain, contour_.mesh);
+    return stats;
+  }
+
+  void optimize(Domain& domain, int iteration, IterationStats& stats) {
+    const auto t = Clock::now();
+    for (int round = 0; round < options_.optimizer_rounds; ++round) {
+      report("optimize", iteration, domain);
+      const OptimizerReport r = optimize_domain(domain, options_.optimizer);
+      stats.optimizer_cg_iterations += r.cg_iterations;
+      stats.rejected_moves += r.rejected_moves;
+    }
+    stats.seconds_optimize = seconds_since(t);
+  }
+
+  // Table 1's columns for the current contour.
+  void measure(const Domain& domain, IterationStats& stats) const {
+    std::vector<char> near(domain.num_vertices(), 0);
+    for (int t : contour_.facet_tet)
+      for (int v : domain.tets()[t]) near[v] = 1;
+    stats.vertices = domain.num_vertices();
+    stats.vertices_near_isosurface = static_cast<std::size_t>(std::count(near.begin(), near.end(), 1));
+    stats.parsimony = stats.vertices ? static_cast<double>(stats.vertices_near_isosurface) /
+                                           static_cast<double>(stats.vertices)
+                                     : 0.0;
+    stats.isovertices = contour_.mesh.vertices.size();
+    stats.triangles = contour_.mesh.faces.size();
+    const TriangleQuality q = triangle_quality(contour_.mesh);
+    stats.mean_min_angle = q.mean_min_angle;
+    stats.fraction_below_30 = q.fraction_below_30;
+  }
+
+  // The final solve on the final domain, and its isosurface.
+  Result finish(Domain domain, bool optimize_first = false) {
+    const int last = result_.iterations.empty() ? 1 : result_.iterations.back().iteration + 1;
+    IterationStats optimized;
+    if (optimize_first) optimize(domain, last, optimized);
+    result_.iterations.push_back(solve(domain, last));
+    result_.iterations.back().seconds_optimize = optimized.seconds_optimize;
+    result_.iterations.back().optimizer_cg_iterations = optimized.optimizer_cg_iterations;
+    result_.iterations.back().rejected_moves = optimized.rejected_moves;
+    result_.mesh = std::move(contour_.mesh);
+    result_.domain = std::move(domain);
+    result_.seconds = seconds_since(start_);
+    return std::move(result_);
+  }
+
+  const PointSet& points_;
+  const ReconstructOptions& options_;
+  std::unique_ptr<ImplicitSolver> solver_;
+  std::mt19937_64 rng_;
+  Clock::time_point start_;
+  IsoSurface contour_;
+  Result result_;
+};
+
+}  // namespace
+
+DomainStrategy parse_domain_strategy(const std::string& name) {
+  const std::string s = lower(name);
+  if (s == "progressive") return DomainStrategy::kProgressive;
+  if (s == "direct") return DomainStrategy::kDirect;
+  if (s == "input") return DomainStrategy::kInput;
+  if (s == "octree") return DomainStrategy::kOctree;
+  throw InputError("unknown domain strategy '" + name + "' (progressive, direct, input, octree)");
+}
+
+std::string to_string(DomainStrategy strategy) {
+  switch (strategy) {
+    case DomainStrategy::kProgressive: return "progressive";
+    case DomainStrategy::kDirect: return "direct";
+    case DomainStrategy::kInput: return "input";
+    case DomainStrategy::kOctree: return "octree";
+  }
+  return "?";
+}
+
+SizingKind parse_sizing_kind(const std::string& name) {
+  const std::string s = lower(name);
+  if (s == "uniform") return SizingKind::kUniform;
+  if (s == "adaptive") return SizingKind::kAdaptive;
+  throw InputError("unknown sizing '" + name + "' (uniform, adaptive)");
+}
+
+Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
+  if (options.max_iterations < 1)
+    throw InputError("reconstruct: at least one iteration is needed, got " +
+                     std::to_string(options.max_iterations));
+  if (options.optimizer_rounds < 0)
+    throw InputError("reconstruct: optimizer rounds must be >= 0, got " +
+                     std::to_string(options.optimizer_rounds));
+  if (options.threads < 0)
+    throw InputError("reconstruct: threads must be >= 0, got " + std::to_string(options.threads));
+  std::optional<tbb::global_control> threads;
+  if (options.threads > 0)
+    threads.emplace(tbb::global_control::max_allowed_parallelism,
+                    static_cast<std::size_t>(options.threads));
+  Run run(points, options);
+  try {
+    switch (options.strategy) {
+      case DomainStrategy::kProgressive: return run.progressive();
+      case DomainStrategy::kDirect: return run.direct();
+      case DomainStrategy::kInput: return run.input();
+      case DomainStrategy::kOctree: return run.octree();
+    }
+  } catch (const Cancelled&) {
+  }
+  Result cancelled;
+  cancelled.cancelled = true;
+  return cancelled;
+}
+
+}  // namespace pdd

@@ -1,0 +1,74 @@
+#include <pdd/report.h>
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace pdd {
+namespace {
+
+// Shortest text that reads back to the same double; JSON has no inf/nan.
+std::string number(double x) {
+  if (!std::isfinite(x)) return "null";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", x);
+  return buffer;
+}
+
+}  // namespace
+
+std::string statistics_json(const Result& result, const ReconstructOptions& options) {
+  std::ostringstream out;
+  out << "{\n  \"strategy\": \"" << to_string(options.strategy) << "\",\n"
+      << "  \"solver\": \"" << to_string(options.solver.kind) << "\",\n"
+      << "  \"seed\": " << options.seed << ",\n"
+      << "  \"seconds\": " << number(result.seconds) << ",\n"
+      << "  \"vertices\": " << result.domain.num_vertices() << ",\n"
+      << "  \"triangles\": " << result.mesh.faces.size() << ",\n"
+      << "  \"isovertices\": " << result.mesh.vertices.size() << ",\n"
+      << "  \"iterations\": [";
+  for (std::size_t i = 0; i < result.iterations.size(); ++i) {
+    const IterationStats& s = result.iterations[i];
+    out << (i ? "," : "") << "\n    {"
+        << "\"iteration\": " << s.iteration << ", \"final\": "
+        << (i + 1 == result.iterations.size() ? "true" : "false")
+        << ", \"vertices\": " << s.vertices
+        << ", \"vertices_near_isosurface\": " << s.vertices_near_isosurface
+        << ", \"parsimony\": " << number(s.parsimony) << ", \"isovertices\": " << s.isovertices
+        << ", \"triangles\": " << s.triangles << ", \"solver_method\": \"" << s.solver.method
+        << "\", \"solver_iterations\": " << s.solver.iterations
+        << ", \"solver_residual\": " << number(s.solver.residual)
+        << ", \"optimizer_cg_iterations\": " << s.optimizer_cg_iterations
+        << ", \"rejected_moves\": " << s.rejected_moves << ", \"trisected\": " << s.trisected
+        << ", \"bisected\": " << s.bisected << ", \"inserted_points\": " << s.inserted_points
+        << ", \"mean_min_angle\": " << number(s.mean_min_angle)
+        << ", \"fraction_below_30\": " << number(s.fraction_below_30)
+        << ", \"seconds\": {\"solve\": " << number(s.seconds_solve)
+        << ", \"optimize\": " << number(s.seconds_optimize)
+        << ", \"refine\": " << number(s.seconds_refine)
+        << ", \"contour\": " << number(s.seconds_contour) << "}}";
+  }
+  out << "\n  ]\n}\n";
+  return out.str();
+}
+
+std::string statistics_table(const Result& result) {
+  std::ostringstream out;
+  char line[256];
+  std::snprintf(line, sizeof line, "%5s %9s %9s %6s %9s %9s %7s %6s %7s %7s %7s %7s\n", "iter",
+                "vertices", "near-iso", "pars.", "triangles", "residual", "minang", "<30%",
+                "solve s", "optim s", "refine s", "contour");
+  out << line;
+  for (const IterationStats& s : result.iterations) {
+    std::snprintf(line, sizeof line, "%5d %9zu %9zu %6.3f %9zu %9.2e %7.2f %6.2f %7.2f %7.2f %7.2f %7.2f\n",
+                  s.iteration, s.vertices, s.vertices_near_isosurface, s.parsimony, s.triangles,
+                  s.solver.residual, s.mean_min_angle, 100 * s.fraction_below_30, s.seconds_solve,
+                  s.seconds_optimize, s.seconds_refine, s.seconds_contour);
+    out << line;
+  }
+  std::snprintf(line, sizeof line, "total %.2f s\n", result.seconds);
+  out << line;
+  return out.str();
+}
+
+}  // namespace pdd
