@@ -35,9 +35,9 @@ struct Location {
 
 // Statistics of the initial Delaunay refinement.
 struct RefinementReport {
-  int inserted_interior = 0;  // circumcenters inserted inside the ball
-  int inserted_boundary = 0;  // circumcenters projected onto the boundary sphere
-  int remaining_bad = 0;      // tets still above the bound (boundary cells no point improves)
+  int inserted = 0;           // circumcenters inserted
+  int remaining_bad = 0;      // tets still above the bound: boundary cells whose circumcenter
+                              // lies outside the domain, or the point budget ran out
   double worst_radius_edge = 0;  // largest ratio among all tets after refinement
 };
 
@@ -95,9 +95,8 @@ class Domain {
 
   // Delaunay refinement by circumcenter insertion (worst tet first) until
   // every tet has radius-edge ratio <= radius_edge_bound and circumradius <=
-  // max_circumradius, or max_points were inserted. A circumcenter outside the
-  // domain sphere (or the hull) is projected onto the sphere. New vertices get
-  // f by interpolation.
+  // max_circumradius, or max_points were inserted. Cells whose circumcenter
+  // lies outside the domain are left. New vertices get f by interpolation.
   RefinementReport delaunay_refine(double radius_edge_bound, int max_points,
                                    double max_circumradius = std::numeric_limits<double>::infinity());
 

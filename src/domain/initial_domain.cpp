@@ -112,44 +112,31 @@ RefinementReport Domain::delaunay_refine(double radius_edge_bound, int max_point
   for (auto cell = d.dt.finite_cells_begin(); cell != d.dt.finite_cells_end(); ++cell)
     push_if_bad(cell);
 
-  int inserted = 0;
   std::vector<Delaunay::Cell_handle> star;
-  while (!queue.empty() && inserted < max_points) {
+  while (!queue.empty() && stats.inserted < max_points) {
     const BadCell bad = queue.top();
     queue.pop();
     Delaunay::Cell_handle cell;
     if (!d.dt.is_cell(bad.v[0], bad.v[1], bad.v[2], bad.v[3], cell)) continue;
 
-    // The circumcenter if it lies inside the current hull and the ball;
-    // otherwise its projection on the sphere, which splits the boundary.
-    const Vec3 cc = to_vec(d.dt.dual(cell));
-    Vec3 p = cc;
-    std::uint8_t flag = 0;
+    // The circumcenter, when it lies inside the current hull and the ball.
+    // A bad cell whose circumcenter falls outside is left as it is: it lies
+    // against the boundary, far from the data, and projecting its
+    // circumcenter onto the sphere can cascade into ever smaller boundary
+    // cells.
+    const Vec3 p = to_vec(d.dt.dual(cell));
+    if ((p - d.center).norm() >= d.radius) continue;
     Delaunay::Locate_type lt;
     int li, lj;
-    Delaunay::Cell_handle where = d.dt.locate(to_point(p), lt, li, lj, cell);
-    if ((p - d.center).norm() >= d.radius || d.dt.is_infinite(where)) {
-      p = d.center + d.radius * (cc - d.center).normalized();
-      flag = kOnBoundarySphere;
-      if ((p - cc).norm() >= circumradius(cell)) continue;  // would not destroy the bad cell
-      where = d.dt.locate(to_point(p), lt, li, lj, cell);
-    }
+    const Delaunay::Cell_handle where = d.dt.locate(to_point(p), lt, li, lj, cell);
+    if (d.dt.is_infinite(where)) continue;
     if (lt == Delaunay::VERTEX) continue;
-    // f at the new vertex: interpolated, or for a boundary point outside the
-    // hull, the mean over the bad cell's vertices.
-    const Delaunay::Cell_handle finite = d.finite_cell_containing(p, where);
-    double value = 0;
-    if (finite != Delaunay::Cell_handle()) {
-      value = d.interpolate_in(finite, p, d.f);
-    } else {
-      for (int i = 0; i < 4; ++i) value += 0.25 * d.f[cell->vertex(i)->info()];
-    }
+    const double value = d.interpolate_in(where, p, d.f);
     const auto v = d.dt.insert(to_point(p), lt, where, li, lj);
     v->info() = static_cast<int>(d.f.size());
     d.f.push_back(value);
-    d.flags.push_back(flag);
-    ++inserted;
-    ++(flag ? stats.inserted_boundary : stats.inserted_interior);
+    d.flags.push_back(0);
+    ++stats.inserted;
     star.clear();
     d.dt.incident_cells(v, std::back_inserter(star));
     for (auto s : star) push_if_bad(s);
