@@ -4,8 +4,6 @@
 #include <gtest/gtest.h>
 #include <pdd/compare.h>
 #include <pdd/io.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -15,6 +13,8 @@
 #include <regex>
 #include <stdexcept>
 #include <string>
+
+#include "support/scratch_dir.h"
 
 namespace pdd {
 namespace {
@@ -263,36 +263,16 @@ TEST(CompareSurfaces, RejectsBadArguments) {
 
 namespace fs = std::filesystem;
 
-class CompareCli : public ::testing::Test {
+class CompareCli : public test::ScratchDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("pdd_compare_test_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-  static std::string slurp(const std::string& file) {
-    std::ifstream in(file);
-    return std::string((std::istreambuf_iterator<char>(in)), {});
-  }
-
   // Runs `pdd <args>`; returns the exit code, stdout in out_, stderr in err_.
   int pdd(const std::string& args) {
-    const std::string out = path("stdout.txt"), err = path("stderr.txt");
-    const std::string command =
-        "'" + std::string(PDD_BINARY) + "' " + args + " >'" + out + "' 2>'" + err + "'";
-    const int status = std::system(command.c_str());
-    out_ = slurp(out);
-    err_ = slurp(err);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    const test::Outcome outcome = run(PDD_BINARY, args);
+    out_ = outcome.out;
+    err_ = outcome.err;
+    return outcome.code;
   }
 
-  fs::path dir_;
   std::string out_, err_;
 };
 

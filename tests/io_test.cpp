@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 #include <pdd/errors.h>
 #include <pdd/io.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +14,7 @@
 #include <random>
 #include <sstream>
 
+#include "support/scratch_dir.h"
 #include "support/shapes.h"
 
 namespace pdd {
@@ -22,36 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh folder per test, removed afterwards.
-class IoTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("pdd_io_test_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-  std::string write_file(const std::string& name, const std::string& content) const {
-    std::ofstream out(path(name), std::ios::binary);
-    out << content;
-    return path(name);
-  }
-
-  // Every entry of the folder, hidden temporaries included.
-  std::vector<std::string> entries() const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-
-  fs::path dir_;
-};
+class IoTest : public test::ScratchDirTest {};
 
 // Runs f, expects an InputError whose message holds every fragment.
 template <class F>
