@@ -45,6 +45,16 @@ class LinearSolver {
   double factorize_seconds() const { return factorize_seconds_; }  // of the last compute()
   bool reused_analysis() const { return reused_analysis_; }        // last compute() kept the analysis
 
+  // Copies the above into stats (method, iterations, residual,
+  // factorize_seconds, reused_analysis).
+  void report(SolverStats& stats) const {
+    stats.method = method_name();
+    stats.iterations = iterations_;
+    stats.residual = residual_;
+    stats.factorize_seconds = factorize_seconds_;
+    stats.reused_analysis = reused_analysis_;
+  }
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -63,11 +63,7 @@ class PoissonSolver final : public ImplicitSolver {
     }
     stats_.solve_seconds = seconds_since(solve_start);
 
-    stats_.method = linear_.method_name();
-    stats_.iterations = linear_.iterations();
-    stats_.residual = linear_.residual();
-    stats_.factorize_seconds = linear_.factorize_seconds();
-    stats_.reused_analysis = linear_.reused_analysis();
+    linear_.report(stats_);
     stats_.num_vertices = p.mesh.vertices.size();
     stats_.num_points = p.num_points;
     stats_.nonzeros = static_cast<std::size_t>(A.nonZeros());
