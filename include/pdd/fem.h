@@ -70,14 +70,15 @@ SparseMatrix hessian_matrix(const TetMesh& mesh);
 // The integrated squared Hessian of Eq. (15): H^T M~_V^-1 H (|V| x |V|,
 // two-ring sparsity), M~_V the vertex masses repeated for the 9 rows of each
 // vertex. Equals gram_matrix(hessian_matrix(mesh), 1 / masses repeated 9
-// times) but is computed from each vertex's dense 9 x |ring| block of H,
-// several times faster.
+// times) but is computed from each vertex's dense 9 x |ring| block of H:
+// 0.9 s on one thread for 30k vertices, H's assembly included, against
+// 1.5 s for Eigen's product H^T H alone and 2.6 s for gram_matrix.
 SparseMatrix hessian_energy(const TetMesh& mesh);
 
 // A^T diag(d) A for any sparse A (d.size() == A.rows()), e.g. the
-// bi-Laplacian L M_V^-1 L, H^T M~_V^-1 H (Eq. (15)) or Phi^T Phi. Computed
-// column by column in parallel (Gustavson's algorithm) and deterministic;
-// Eigen's sparse product is serial and several times slower here.
+// bi-Laplacian L M_V^-1 L or Phi^T Phi. Computed column by column in
+// parallel (Gustavson's algorithm) and deterministic; on one thread it runs
+// at the speed of Eigen's (serial) sparse product for one-ring matrices.
 SparseMatrix gram_matrix(const SparseMatrix& A, const Eigen::VectorXd& d);
 
 // Locates every point in the domain (Domain::locate). Throws InputError
