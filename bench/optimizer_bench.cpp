@@ -81,37 +81,6 @@ std::unique_ptr<ImplicitSolver> ssd_solver(LinearMethod method) {
   return make_solver(options);
 }
 
-// The SSD system matrix of Eq. (15) as solvers.h states it (default
-// weights alpha = beta = 1, gamma = 0.1, lengths in units of the input's
-// largest bounding-box side l), assembled here from the fem.h operators
-// because the solver does not expose its matrix.
-SparseMatrix ssd_matrix(const Domain& domain, const PointSet& input, Eigen::VectorXd& rhs) {
-  const SsdOptions ssd;
-  const TetMesh mesh = domain.mesh();
-  const auto locations = locate_points(domain, input.points);
-  const SparseMatrix Phi = sampling_matrix(mesh, locations);
-  Eigen::AlignedBox3d box;
-  for (const Vec3& p : input.points) box.extend(p);
-  const double l = box.sizes().maxCoeff();
-  const double nx = static_cast<double>(input.size());
-  std::vector<Eigen::Matrix3d> count(mesh.tets.size(), Eigen::Matrix3d::Zero());
-  Eigen::VectorXd normal_sum = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(mesh.tets.size()));
-  for (std::size_t i = 0; i < input.size(); ++i) {
-    count[locations[i].tet] += Eigen::Matrix3d::Identity();
-    normal_sum.segment<3>(3 * locations[i].tet) += input.normals[i].normalized();
-  }
-  rhs = ssd.beta / nx * (gradient_matrix(mesh).transpose() * normal_sum);
-  SparseMatrix A = ssd.beta / nx * weighted_stiffness(mesh, count);
-  A += ssd.alpha / (l * l * nx) * SparseMatrix(SparseMatrix(Phi.transpose()) * Phi);
-  const Eigen::VectorXd mass = vertex_masses(mesh);
-  const SparseMatrix H = hessian_matrix(mesh);
-  const Eigen::Index n = mass.size();
-  Eigen::VectorXd inverse_mass(9 * n);
-  for (int block = 0; block < 9; ++block) inverse_mass.segment(block * n, n) = mass.cwiseInverse();
-  const double gamma = ssd.gamma * l * l / tet_volumes(mesh).sum();
-  A += gamma * SparseMatrix(SparseMatrix(H.transpose()) * (inverse_mass.asDiagonal() * H));
-  return A;
-}
 
 // Fraction of the crossing edges cut within 10% of their midpoint:
 // |t - 1/2| <= 0.1 with t the crossing parameter.
@@ -190,8 +159,14 @@ void asap_rounds(const Domain& start, const PointSet& input, const OptimizerOpti
   for (int round = 0; round <= 10; ++round) {
     if (round == 0 || round == 3 || round == 5 || round == 10) {
       // Plain Eigen CG (Jacobi preconditioner) from 0, as in Table 2.
-      Eigen::VectorXd rhs;
-      const SparseMatrix A = ssd_matrix(domain, input, rhs);
+      // The weights the recorded Table 2 used (alpha = beta = 1, gamma = 0.1):
+      // a Hessian-dominated system, whose conditioning follows the tets' shapes.
+      SsdOptions smooth;
+      smooth.alpha = 1;
+      smooth.gamma = 0.1;
+      const LinearSystem system = ssd_system(domain, input, smooth);
+      const SparseMatrix& A = system.A;
+      const Eigen::VectorXd& rhs = system.b;
       Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper> cg;
       cg.setTolerance(1e-10);
       cg.setMaxIterations(1000000);

@@ -15,6 +15,9 @@
 #include <pdd/domain.h>
 #include <pdd/types.h>
 
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -161,5 +164,16 @@ class ImplicitSolver {
 };
 
 std::unique_ptr<ImplicitSolver> make_solver(const SolverOptions& options);
+
+// A sparse symmetric system A f = b.
+struct LinearSystem {
+  Eigen::SparseMatrix<double> A;
+  Eigen::VectorXd b;
+};
+
+// The system of Eq. (15) that the SSD solver solves, for studies of its
+// conditioning (Table 2). Same errors as the solver's solve().
+LinearSystem ssd_system(const Domain& domain, const PointSet& points,
+                        const SsdOptions& options = {});
 
 }  // namespace pdd

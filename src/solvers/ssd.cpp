@@ -8,6 +8,37 @@
 namespace pdd::detail {
 namespace {
 
+const char* const kWhyNormals = "the SSD solver fits the gradient of f to oriented normals (Eq. 15)";
+
+// The system A f = b of Eq. (15) for a located problem.
+LinearSystem ssd_system(const Problem& p, const SsdOptions& options) {
+  const double nx = static_cast<double>(p.num_points);
+  const std::size_t nt = p.mesh.tets.size();
+
+  // S^T S counts the samples in each tet and S^T N sums their normals, so
+  // G^T S^T S G = G^T diag(count_t I) G and G^T S^T N = G^T (sum of n_p per tet).
+  std::vector<Eigen::Matrix3d> count(nt, Eigen::Matrix3d::Zero());
+  Eigen::VectorXd normal_sum = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(nt));
+  for (std::size_t i = 0; i < p.num_points; ++i) {
+    const int t = p.locations[i].tet;
+    count[t] += Eigen::Matrix3d::Identity();
+    normal_sum.segment<3>(3 * t) += p.normals[i];
+  }
+  const double beta = options.beta / nx;
+  const Eigen::VectorXd b = beta * (gradient_matrix(p.mesh).transpose() * normal_sum);
+
+  // Eq. (15) in units of l: f(p) is a length (1/l^2) and the Hessian an
+  // inverse length (l^2); |T| is the volume of the domain, as in CT11.
+  SparseMatrix A = beta * weighted_stiffness(p.mesh, count);
+  A += (options.alpha / (p.length * p.length * nx)) *
+       gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
+  if (options.gamma > 0) {
+    const double gamma = options.gamma * p.length * p.length / tet_volumes(p.mesh).sum();
+    A += gamma * hessian_energy(p.mesh);  // H^T M~_V^-1 H
+  }
+  return {std::move(A), b};
+}
+
 class SsdSolver final : public ImplicitSolver {
  public:
   SsdSolver(const SsdOptions& options, const LinearSolverOptions& linear)
@@ -20,32 +51,10 @@ class SsdSolver final : public ImplicitSolver {
                             const std::vector<double>* warm_start) override {
     const auto start = Clock::now();
     stats_ = SolverStats();
-    const Problem p = make_problem(domain, points, "SSD solver",
-                                   "the SSD solver fits the gradient of f to oriented normals (Eq. 15)");
-    const double nx = static_cast<double>(p.num_points);
-    const std::size_t nt = p.mesh.tets.size();
-
-    // S^T S counts the samples in each tet and S^T N sums their normals, so
-    // G^T S^T S G = G^T diag(count_t I) G and G^T S^T N = G^T (sum of n_p per tet).
-    std::vector<Eigen::Matrix3d> count(nt, Eigen::Matrix3d::Zero());
-    Eigen::VectorXd normal_sum = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(nt));
-    for (std::size_t i = 0; i < p.num_points; ++i) {
-      const int t = p.locations[i].tet;
-      count[t] += Eigen::Matrix3d::Identity();
-      normal_sum.segment<3>(3 * t) += p.normals[i];
-    }
-    const double beta = options_.beta / nx;
-    const Eigen::VectorXd b = beta * (gradient_matrix(p.mesh).transpose() * normal_sum);
-
-    // Eq. (15) in units of l: f(p) is a length (1/l^2) and the Hessian an
-    // inverse length (l^2); |T| is the volume of the domain, as in CT11.
-    SparseMatrix A = beta * weighted_stiffness(p.mesh, count);
-    A += (options_.alpha / (p.length * p.length * nx)) *
-         gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
-    if (options_.gamma > 0) {
-      const double gamma = options_.gamma * p.length * p.length / tet_volumes(p.mesh).sum();
-      A += gamma * hessian_energy(p.mesh);  // H^T M~_V^-1 H
-    }
+    const Problem p = make_problem(domain, points, "SSD solver", kWhyNormals);
+    const LinearSystem system = ssd_system(p, options_);
+    const SparseMatrix& A = system.A;
+    const Eigen::VectorXd& b = system.b;
     stats_.assembly_seconds = seconds_since(start);
 
     linear_.compute(A);
@@ -72,6 +81,19 @@ class SsdSolver final : public ImplicitSolver {
 };
 
 }  // namespace
+
+}  // namespace pdd::detail
+
+namespace pdd {
+
+LinearSystem ssd_system(const Domain& domain, const PointSet& points, const SsdOptions& options) {
+  return detail::ssd_system(detail::make_problem(domain, points, "SSD system", detail::kWhyNormals),
+                            options);
+}
+
+}  // namespace pdd
+
+namespace pdd::detail {
 
 std::unique_ptr<ImplicitSolver> make_ssd_solver(const SsdOptions& options,
                                                 const LinearSolverOptions& linear) {
