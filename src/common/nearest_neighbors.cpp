@@ -1,5 +1,6 @@
 #include "common/nearest_neighbors.h"
 
+#include <CGAL/Fuzzy_sphere.h>
 #include <CGAL/Orthogonal_k_neighbor_search.h>
 #include <CGAL/Search_traits_3.h>
 #include <CGAL/Search_traits_adapter.h>
@@ -47,6 +48,14 @@ std::vector<int> NearestNeighbors::query(const Vec3& q, int k) const {
   out.reserve(k);
   for (auto it = search.begin(); it != search.end(); ++it) out.push_back(static_cast<int>(it->first));
   return out;
+}
+
+std::vector<int> NearestNeighbors::within(const Vec3& q, double radius) const {
+  std::vector<std::size_t> found;
+  const Traits traits(CGAL::make_property_map(impl_->points));
+  impl_->tree->search(std::back_inserter(found),
+                      CGAL::Fuzzy_sphere<Traits>(Point(q.x(), q.y(), q.z()), radius, 0.0, traits));
+  return std::vector<int>(found.begin(), found.end());
 }
 
 }  // namespace pdd::detail

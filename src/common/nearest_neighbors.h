@@ -15,6 +15,8 @@ class NearestNeighbors {
   ~NearestNeighbors();
   // Indices of the k points nearest to q, nearest first (fewer if the set is smaller).
   std::vector<int> query(const Vec3& q, int k) const;
+  // Indices of the points within `radius` of q, in an order fixed by the tree.
+  std::vector<int> within(const Vec3& q, double radius) const;
 
  private:
   struct Impl;

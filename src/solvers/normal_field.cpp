@@ -2,30 +2,12 @@
 
 #include "common/nearest_neighbors.h"
 
-#include <CGAL/Fuzzy_sphere.h>
-#include <CGAL/Kd_tree.h>
-#include <CGAL/Search_traits_3.h>
-#include <CGAL/Search_traits_adapter.h>
-#include <CGAL/Simple_cartesian.h>
-#include <CGAL/property_map.h>
-
-#include <boost/iterator/counting_iterator.hpp>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <cmath>
 
 namespace pdd::detail {
-namespace {
-
-using Kernel = CGAL::Simple_cartesian<double>;
-using Point = Kernel::Point_3;
-using PointMap = CGAL::Pointer_property_map<Point>::type;
-using Traits = CGAL::Search_traits_adapter<std::size_t, PointMap, CGAL::Search_traits_3<Kernel>>;
-using Tree = CGAL::Kd_tree<Traits>;
-using Sphere = CGAL::Fuzzy_sphere<Traits>;
-
-}  // namespace
 
 double mean_spacing(const std::vector<Vec3>& points) {
   if (points.size() < 2) return 0;
@@ -47,18 +29,11 @@ double mean_spacing(const std::vector<Vec3>& points) {
 
 std::vector<Vec3> smoothed_normal_field(const TetMesh& mesh, const std::vector<Vec3>& points,
                                         const std::vector<Vec3>& normals, double sigma) {
-  std::vector<Point> samples;
-  samples.reserve(points.size());
-  for (const Vec3& p : points) samples.emplace_back(p.x(), p.y(), p.z());
-  const Traits traits(CGAL::make_property_map(samples));
-  Tree tree(boost::counting_iterator<std::size_t>(0),
-            boost::counting_iterator<std::size_t>(samples.size()), Tree::Splitter(), traits);
-  tree.build();  // queries below are then read-only
+  const NearestNeighbors samples(points);  // read-only queries, safe in parallel
 
   const int nt = static_cast<int>(mesh.tets.size());
   std::vector<Vec3> field(nt, Vec3::Zero());
   tbb::parallel_for(tbb::blocked_range<int>(0, nt), [&](const tbb::blocked_range<int>& r) {
-    std::vector<std::size_t> found;
     for (int t = r.begin(); t < r.end(); ++t) {
       Vec3 x[4];
       for (int i = 0; i < 4; ++i) x[i] = mesh.vertices[mesh.tets[t][i]];
@@ -66,14 +41,12 @@ std::vector<Vec3> smoothed_normal_field(const TetMesh& mesh, const std::vector<V
       double spread = 0;
       for (int i = 0; i < 4; ++i) spread += (x[i] - c).squaredNorm();
       const double variance = sigma * sigma + spread / 60.0;  // per axis
-      found.clear();
-      tree.search(std::back_inserter(found),
-                  Sphere(Point(c.x(), c.y(), c.z()), 3.0 * std::sqrt(variance), 0.0, traits));
-      // The tree and the query fix the order of `found`, so the sum is
-      // deterministic.
+      // The tree and the query fix the order of the points found, so the
+      // sum is deterministic.
+      const std::vector<int> found = samples.within(c, 3.0 * std::sqrt(variance));
       const double scale = std::pow(2.0 * M_PI * variance, -1.5);
       Vec3 sum = Vec3::Zero();
-      for (std::size_t p : found)
+      for (int p : found)
         sum += std::exp(-(points[p] - c).squaredNorm() / (2.0 * variance)) * normals[p];
       field[t] = scale * sum;
     }
