@@ -16,6 +16,7 @@ struct IsofacetAreaStats {
   double max_area = 0;
   double mean_ratio = 0;  // mean of r_t = area / s
   double max_ratio = 0;
+  int above_4 = 0;        // facets with r_t >= 4, which rules 1-4 split
 };
 
 struct RefinementStats {
@@ -49,7 +50,11 @@ IsofacetAreaStats isofacet_area_stats(const std::vector<Isofacet>& facets,
 IsofacetAreaStats isofacet_area_stats(const Domain& domain, const SizingField& sizing);
 
 // The sizing field is met: isofacets are on average no larger than their
-// target and none calls for a deterministic split (r_t < 4, rules 1-4).
-bool sizing_met(const IsofacetAreaStats& stats);
+// target and almost none calls for a deterministic split (r_t >= 4, rules
+// 1-4). A few such facets are tolerated (`max_fraction_above_4`): the solve
+// after each pass moves the isosurface, so a handful of large facets reappear
+// on every iteration and a strict bound would add iterations that change
+// nothing but the vertex count.
+bool sizing_met(const IsofacetAreaStats& stats, double max_fraction_above_4 = 0.002);
 
 }  // namespace pdd

@@ -27,6 +27,7 @@ IsofacetAreaStats isofacet_area_stats(const std::vector<Isofacet>& facets,
     s.max_area = std::max(s.max_area, facets[i].area);
     s.mean_ratio += ratio;
     s.max_ratio = std::max(s.max_ratio, ratio);
+    if (ratio >= 4) ++s.above_4;
   }
   if (s.count > 0) {
     s.mean_area /= s.count;
@@ -40,8 +41,9 @@ IsofacetAreaStats isofacet_area_stats(const Domain& domain, const SizingField& s
   return isofacet_area_stats(facets, sizing.target_areas(domain, facets));
 }
 
-bool sizing_met(const IsofacetAreaStats& stats) {
-  return stats.count > 0 && stats.mean_ratio <= 1.0 && stats.max_ratio < 4.0;
+bool sizing_met(const IsofacetAreaStats& stats, double max_fraction_above_4) {
+  return stats.count > 0 && stats.mean_ratio <= 1.0 &&
+         stats.above_4 <= max_fraction_above_4 * stats.count;
 }
 
 namespace {
