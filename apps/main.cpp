@@ -4,9 +4,18 @@
 
 #include <pdd/errors.h>
 
+#include <malloc.h>
+
 #include <iostream>
 
 int main(int argc, char** argv) {
+  // Each iteration assembles and factors matrices of hundreds of megabytes and
+  // frees them again. With glibc's defaults every such block is a fresh mmap
+  // whose pages the kernel zeroes on first touch (a third of the run was
+  // system time on a 20k-point scan); keeping freed memory in the heap for
+  // reuse halves that (docs/benchmarks.md, "Where the time goes").
+  mallopt(M_MMAP_THRESHOLD, 1 << 30);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
   CLI::App app{"pdd: closed triangle meshes from point clouds by progressive discrete domains\n"
                "(Zhao, Alliez, Boubekeur, Buse, Thiery, SGP 2021)"};
   app.set_version_flag("--version", std::string("pdd ") + PDD_VERSION);

@@ -56,9 +56,11 @@ class Run {
   Result progressive() {
     Domain domain = initial_domain();
     const auto sizing = make_sizing(points_, options_);
+    bool refined_last = false;  // the domain changed since it was last optimized
     for (int it = 1; it <= options_.max_iterations; ++it) {
       IterationStats stats = solve(domain, it);
       optimize(domain, it, stats);
+      refined_last = false;
       const bool over_budget = domain.num_vertices() >= options_.max_vertices;
       bool converged = sizing_met(isofacet_area_stats(domain, *sizing));
       if (!over_budget && !converged) {
@@ -69,14 +71,16 @@ class Run {
         stats.trisected = refined.trisected;
         stats.bisected = refined.bisected;
         stats.inserted_points = refined.inserted_points;
+        refined_last = true;
         converged = refined.trisected + refined.bisected <
                     options_.min_refined_fraction * refined.crossing_tets;
       }
       result_.iterations.push_back(stats);
       if (over_budget || converged) break;
     }
-    // Figure 3: the final solve happens on the optimized domain.
-    return finish(std::move(domain), /*optimize_first=*/true);
+    // Figure 3: the final solve happens on the optimized domain; it already
+    // is when the loop stopped before refining.
+    return finish(std::move(domain), /*optimize_first=*/refined_last);
   }
 
   // §4.2 (3): our refiner on the first solution, interpolated, no optimizer

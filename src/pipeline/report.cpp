@@ -44,6 +44,9 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
         << ", \"mean_min_angle\": " << number(s.mean_min_angle)
         << ", \"fraction_below_30\": " << number(s.fraction_below_30)
         << ", \"seconds\": {\"solve\": " << number(s.seconds_solve)
+        << ", \"solve_assembly\": " << number(s.solver.assembly_seconds)
+        << ", \"solve_factorize\": " << number(s.solver.factorize_seconds)
+        << ", \"solve_linear\": " << number(s.solver.solve_seconds)
         << ", \"optimize\": " << number(s.seconds_optimize)
         << ", \"refine\": " << number(s.seconds_refine)
         << ", \"contour\": " << number(s.seconds_contour) << "}}";
