@@ -119,11 +119,20 @@ std::string histogram_header(const Histogram& h) {
   return out;
 }
 
+// The paper's weights, lambda_a = lambda_m = 3 (§4.4), for comparison with its
+// Table 2 and Figures 13-14; the library's default lambda_a is 60.
+OptimizerOptions paper_weights() {
+  OptimizerOptions o;
+  o.lambda_asap = 3;
+  o.lambda_mid_edge = 3;
+  return o;
+}
+
 // One pure ASAP round (lambda_m = 0): as in the paper's ablation (§4.5), the
 // solver is not run on a freshly refined domain without it (CHOLMOD finds the
 // SSD matrix of such a domain numerically indefinite).
 void asap_step(Domain& domain) {
-  OptimizerOptions asap;
+  OptimizerOptions asap = paper_weights();
   asap.mid_edge = false;
   optimize_domain(domain, asap);
 }
@@ -208,7 +217,8 @@ struct Strategy {
 };
 
 void ablation(const PointSet& input, int iterations, Log& log) {
-  OptimizerOptions mid_edge_only, asap_only, both;
+  OptimizerOptions mid_edge_only = paper_weights(), asap_only = paper_weights(),
+                   both = paper_weights();
   mid_edge_only.asap = false;
   asap_only.mid_edge = false;
   const std::vector<Strategy> strategies = {{"non-optimized", false, both},
@@ -295,7 +305,7 @@ int main(int argc, char** argv) {
         if (domain == &with_points)
           log(format("\n%s: %zu vertices, %zu tets\n", name.c_str(), domain->num_vertices(),
                      domain->num_tets()));
-        OptimizerOptions asap;
+        OptimizerOptions asap = paper_weights();
         asap.mid_edge = false;
         asap_rounds(*domain, input, asap, name + ", pure ASAP rounds (lambda_m = 0, damping on)", log);
         asap.damping = false;

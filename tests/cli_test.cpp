@@ -132,7 +132,7 @@ TEST_F(CliTest, ReconstructWritesTheMeshStatisticsDomainAndIterations) {
   EXPECT_NE(run.out.find("pdd: wrote " + path("out.ply")), std::string::npos) << run.out;
   const TriangleMesh mesh = read_mesh(path("out.ply"));
   EXPECT_GT(mesh.faces.size(), 100u);
-  for (const Vec3& v : mesh.vertices) EXPECT_NEAR(v.norm(), 1.0, 0.05);
+  for (const Vec3& v : mesh.vertices) EXPECT_NEAR(v.norm(), 1.0, 0.1);  // half a target edge
   const std::string stats = slurp(path("stats.json"));
   EXPECT_NE(stats.find("\"triangles\": " + std::to_string(mesh.faces.size())), std::string::npos)
       << stats;

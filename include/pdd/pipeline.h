@@ -54,7 +54,7 @@ struct ReconstructOptions {
   DomainStrategy strategy = DomainStrategy::kProgressive;
   DomainOptions domain;        // §3.2: sphere 1.4 r, 100 points, radius-edge 1.3
   SolverOptions solver;        // §3.5: SSD by default
-  OptimizerOptions optimizer;  // §3.3: lambda_a = lambda_m = 3
+  OptimizerOptions optimizer;  // §3.3: lambda_a = 60, lambda_m = 3 (optimize.h)
   int optimizer_rounds = 2;    // optimizer passes per iteration (the paper's Figure 7 shows one or
                                // more per iteration; two measured better, docs/benchmarks.md)
 
