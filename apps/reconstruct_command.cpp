@@ -36,6 +36,7 @@ struct ReconstructArgs {
   ReconstructOptions options;
   bool ascii = false;  // PLY output as ASCII instead of binary
   bool quiet = false;  // no progress line, no table
+  bool no_cleanup = false;  // keep the raw marching-tetrahedra isosurface
 };
 
 // Why the chosen solver needs normals, for the message when they are absent.
@@ -97,6 +98,7 @@ void reconstruct(ReconstructArgs& args) {
   require_normals(points, args.input, why_normals(args.options.solver.kind));
 
   if (!args.quiet) args.options.progress = progress_printer();
+  args.options.cleanup = !args.no_cleanup;
   if (!args.iterations_dir.empty())
     args.options.on_iteration = iteration_writer(args.iterations_dir, args.ascii);
   const Result result = pdd::reconstruct(points, args.options);
@@ -179,6 +181,14 @@ void add_reconstruct_command(CLI::App& app) {
   cmd->add_option("--optimizer-rounds", args->options.optimizer_rounds,
                   "Optimizer passes per iteration (§3.3)")
       ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  cmd->add_flag("--no-cleanup", args->no_cleanup,
+                "Output the marching-tetrahedra isosurface as it is, without the edge flips "
+                "and needle collapses of the final clean-up");
+  cmd->add_option("--cleanup-dihedral", args->options.cleanup_options.max_dihedral_degrees,
+                  "Clean-up: flip or collapse only where neighbouring triangles turn by at "
+                  "most this many degrees")
+      ->check(CLI::Range(0.0, 89.9))
       ->capture_default_str();
   cmd->add_option("--domain-out", args->domain_output,
                   "Also write the final domain (tetrahedra and f) as a .vtu for ParaView");

@@ -3,6 +3,7 @@
 // output file left behind by a failed run.
 #include <gtest/gtest.h>
 #include <pdd/io.h>
+#include <pdd/quality.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -139,6 +140,29 @@ TEST_F(CliTest, ReconstructWritesTheMeshStatisticsDomainAndIterations) {
   EXPECT_NE(slurp(path("d.vtu")).find("<UnstructuredGrid>"), std::string::npos);
   EXPECT_TRUE(fs::exists(path("steps/iteration_01_isosurface.ply")));
   EXPECT_TRUE(fs::exists(path("steps/iteration_01_domain.vtu")));
+}
+
+TEST_F(CliTest, NoCleanupKeepsTheMarchingTetrahedraSurface) {
+  write_points(path("in.ply"), test::sample_sphere(600));
+  const std::string common =
+      "reconstruct '" + path("in.ply") + "' --target-edge 0.2 --quiet --seed 4 ";
+  ASSERT_EQ(pdd(common + "-o '" + path("a.ply") + "' --stats '" + path("a.json") + "'").code, 0);
+  ASSERT_EQ(pdd(common + "-o '" + path("b.ply") + "' --stats '" + path("b.json") +
+                "' --no-cleanup")
+                .code,
+            0);
+  // The flips of the final iteration, the last "cleanup_flips" in the JSON.
+  auto final_flips = [&](const std::string& file) {
+    const std::string json = slurp(path(file));
+    const std::string key = "\"cleanup_flips\": ";
+    return std::stoi(json.substr(json.rfind(key) + key.size()));
+  };
+  EXPECT_GT(final_flips("a.json"), 0);
+  EXPECT_EQ(final_flips("b.json"), 0);
+  const TriangleQuality a = triangle_quality(read_mesh(path("a.ply")));
+  const TriangleQuality b = triangle_quality(read_mesh(path("b.ply")));
+  EXPECT_GT(a.mean_min_angle, b.mean_min_angle);
+  EXPECT_LE(a.fraction_below_20, b.fraction_below_20);
 }
 
 TEST_F(CliTest, BadOptionValuesExitTwoLeavingNoFile) {

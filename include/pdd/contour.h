@@ -41,4 +41,34 @@ struct IsoSurface {
 IsoSurface marching_tetrahedra(const TetMesh& mesh, const std::vector<double>& f,
                                double isovalue = 0.0);
 
+struct CleanupOptions {
+  double max_dihedral_degrees = 30;  // only where neighbouring triangles turn by at most this
+  double needle_angle_degrees = 20;  // triangles with a smaller angle and a shortest edge at
+                                     // most half the next are needles: that edge is collapsed
+};
+
+struct CleanupReport {
+  int flips = 0;
+  int collapses = 0;
+};
+
+// Improves the triangles of a closed or open oriented manifold mesh where it
+// is nearly flat: Lawson edge flips (the shared edge of two triangles is
+// swapped when the angles opposite it sum to more than pi), then collapses
+// of the shortest edge of needles to its midpoint (kept only if the link
+// condition holds and no other triangle turns by more than the dihedral
+// bound), then flips again. Orientation, manifoldness and the topology are
+// kept; vertices removed by collapses are dropped and the rest keep their
+// order. Throws std::invalid_argument if the mesh is not an oriented
+// manifold or an option is out of range.
+CleanupReport cleanup_isosurface(TriangleMesh& mesh, const CleanupOptions& options = {});
+
+// Swaps the shared edge of two adjacent triangles whose normals differ by at
+// most max_dihedral_degrees when the two angles opposite it sum to more than
+// pi (Lawson's flips towards a Delaunay surface triangulation), until none
+// does. Vertices are untouched; faces keep their orientation. Returns the
+// number of flips. Throws std::invalid_argument if the mesh is not an
+// oriented manifold or the bound is outside [0, 90).
+int flip_flat_edges(TriangleMesh& mesh, double max_dihedral_degrees);
+
 }  // namespace pdd

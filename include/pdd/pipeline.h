@@ -6,6 +6,7 @@
 // strategies of §4.2, for comparison.
 #pragma once
 
+#include <pdd/contour.h>
 #include <pdd/domain.h>
 #include <pdd/optimize.h>
 #include <pdd/sizing.h>
@@ -57,6 +58,9 @@ struct ReconstructOptions {
   OptimizerOptions optimizer;  // §3.3: lambda_a = 60, lambda_m = 3 (optimize.h)
   int optimizer_rounds = 2;    // optimizer passes per iteration (the paper's Figure 7 shows one or
                                // more per iteration; two measured better, docs/benchmarks.md)
+  bool cleanup = true;         // flips and needle collapses on the final isosurface (contour.h);
+                               // not part of the paper, docs/benchmarks.md "Isosurface clean-up"
+  CleanupOptions cleanup_options;
 
   SizingKind sizing = SizingKind::kUniform;
   double target_area = 0;         // uniform: the target isofacet area; 0: from target_edge_length
@@ -89,10 +93,15 @@ struct IterationStats {
   double mean_min_angle = 0;     // of the isosurface's triangles, degrees
   double fraction_below_30 = 0;  // of the isosurface's triangles
   double seconds_solve = 0, seconds_optimize = 0, seconds_refine = 0, seconds_contour = 0;
+  // The final iteration only, when ReconstructOptions::cleanup is on: its
+  // triangle counts and angles above are those of the cleaned mesh.
+  CleanupReport cleanup;
+  double seconds_cleanup = 0;
 };
 
 struct Result {
-  TriangleMesh mesh;  // the isosurface of the final solve, outward-facing
+  TriangleMesh mesh;  // the isosurface of the final solve, outward-facing (cleaned up unless
+                      // ReconstructOptions::cleanup is off)
   Domain domain;      // the final domain, f = the final solution
   std::vector<IterationStats> iterations;  // the last entry is the final solve
   double seconds = 0;

@@ -173,6 +173,20 @@ class Run {
     stats.seconds_optimize = seconds_since(t);
   }
 
+  // Flips and needle collapses on the final isosurface; the final
+  // iteration's triangle statistics then describe the mesh returned.
+  void clean_up(const Domain& domain, IterationStats& stats) {
+    report("clean-up", stats.iteration, domain);
+    const auto t = Clock::now();
+    stats.cleanup = cleanup_isosurface(result_.mesh, options_.cleanup_options);
+    stats.seconds_cleanup = seconds_since(t);
+    stats.isovertices = result_.mesh.vertices.size();
+    stats.triangles = result_.mesh.faces.size();
+    const TriangleQuality q = triangle_quality(result_.mesh);
+    stats.mean_min_angle = q.mean_min_angle;
+    stats.fraction_below_30 = q.fraction_below_30;
+  }
+
   // Table 1's columns for the current contour.
   void measure(const Domain& domain, IterationStats& stats) const {
     std::vector<char> near(domain.num_vertices(), 0);
@@ -200,6 +214,7 @@ class Run {
     result_.iterations.back().optimizer_cg_iterations = optimized.optimizer_cg_iterations;
     result_.iterations.back().rejected_moves = optimized.rejected_moves;
     result_.mesh = std::move(contour_.mesh);
+    if (options_.cleanup) clean_up(domain, result_.iterations.back());
     result_.domain = std::move(domain);
     result_.seconds = seconds_since(start_);
     return std::move(result_);

@@ -49,7 +49,10 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
         << ", \"solve_linear\": " << number(s.solver.solve_seconds)
         << ", \"optimize\": " << number(s.seconds_optimize)
         << ", \"refine\": " << number(s.seconds_refine)
-        << ", \"contour\": " << number(s.seconds_contour) << "}}";
+        << ", \"contour\": " << number(s.seconds_contour)
+        << ", \"cleanup\": " << number(s.seconds_cleanup) << "}"
+        << ", \"cleanup_flips\": " << s.cleanup.flips
+        << ", \"cleanup_collapses\": " << s.cleanup.collapses << "}";
   }
   out << "\n  ]\n}\n";
   return out.str();

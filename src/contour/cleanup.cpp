@@ -1,0 +1,215 @@
+// Clean-up of the final isosurface where it is nearly flat: Lawson edge flips
+// and collapses of the short edge of needles. Marching tetrahedra ties the
+// connectivity to the tets' edges, so even with crossings at the midpoints
+// (§3.3) an irregular crossing tet leaves a cap or a needle that no vertex
+// move fixes (docs/benchmarks.md, "Isosurface clean-up"). CGAL's Surface_mesh
+// and Euler operations keep the halfedge bookkeeping.
+#include <pdd/contour.h>
+
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/Euler_operations.h>
+
+#include <algorithm>
+#include <array>
+#include <utility>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pdd {
+namespace {
+
+using Kernel = CGAL::Simple_cartesian<double>;
+using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+using Vertex = Mesh::Vertex_index;
+using Halfedge = Mesh::Halfedge_index;
+using Edge = Mesh::Edge_index;
+using Face = Mesh::Face_index;
+
+constexpr double kPi = 3.14159265358979323846;
+
+double radians(double degrees) { return degrees * kPi / 180.0; }
+
+// The angle at `apex` of the triangle (apex, u, w).
+double angle(const Vec3& apex, const Vec3& u, const Vec3& w) {
+  const Vec3 x = u - apex, y = w - apex;
+  return std::atan2(x.cross(y).norm(), x.dot(y));
+}
+
+Vec3 unit_normal(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 n = (b - a).cross(c - a);
+  const double length = n.norm();
+  return length > 0 ? Vec3(n / length) : Vec3::Zero();
+}
+
+class Cleaner {
+ public:
+  Cleaner(Mesh& mesh, const CleanupOptions& options)
+      : m_(mesh),
+        options_(options),
+        min_cosine_(std::cos(radians(options.max_dihedral_degrees))) {}
+
+  // Lawson's flips: an edge whose two opposite angles sum to more than pi is
+  // swapped (on a plane this maximizes the smallest angle, and terminates;
+  // the cap guards the nearly flat case).
+  int flip_all() {
+    std::vector<Edge> stack(m_.edges().begin(), m_.edges().end());
+    std::vector<char> queued(m_.number_of_edges() + m_.number_of_removed_edges(), 0);
+    for (Edge e : stack) queued[e.idx()] = 1;
+    const std::size_t cap = 10 * m_.number_of_edges();
+    int flips = 0;
+    while (!stack.empty() && static_cast<std::size_t>(flips) < cap) {
+      const Edge e = stack.back();
+      stack.pop_back();
+      queued[e.idx()] = 0;
+      if (m_.is_removed(e) || !should_flip(e)) continue;
+      const Halfedge h = m_.halfedge(e);
+      CGAL::Euler::flip_edge(h, m_);
+      ++flips;
+      for (Halfedge side :
+           {m_.next(h), m_.prev(h), m_.next(m_.opposite(h)), m_.prev(m_.opposite(h))}) {
+        const Edge s = m_.edge(side);
+        if (!queued[s.idx()]) {
+          queued[s.idx()] = 1;
+          stack.push_back(s);
+        }
+      }
+    }
+    return flips;
+  }
+
+  // Needles (shortest_edge_if_needle) lose their shortest edge, collapsed to
+  // its midpoint, when the link condition holds and no remaining triangle
+  // turns by more than max_dihedral_degrees.
+  int collapse_needles() {
+    int collapses = 0;
+    for (Face f : std::vector<Face>(m_.faces().begin(), m_.faces().end())) {
+      if (m_.is_removed(f)) continue;
+      const Halfedge h = shortest_edge_if_needle(f);
+      if (h == Mesh::null_halfedge()) continue;
+      if (!CGAL::Euler::does_satisfy_link_condition(m_.edge(h), m_)) continue;
+      const Vec3 midpoint = 0.5 * (position(m_.source(h)) + position(m_.target(h)));
+      if (!collapse_keeps_orientation(h, midpoint)) continue;
+      const Vertex kept = CGAL::Euler::collapse_edge(m_.edge(h), m_);
+      m_.point(kept) = Kernel::Point_3(midpoint.x(), midpoint.y(), midpoint.z());
+      ++collapses;
+    }
+    return collapses;
+  }
+
+ private:
+  Vec3 position(Vertex v) const {
+    const auto& p = m_.point(v);
+    return Vec3(p.x(), p.y(), p.z());
+  }
+
+  // Edge (a, b) between triangles (a, b, c) and (b, a, d).
+  bool should_flip(Edge e) const {
+    if (m_.is_border(e)) return false;
+    const Halfedge h = m_.halfedge(e);
+    const Vertex a = m_.source(h), b = m_.target(h);
+    const Vertex c = m_.target(m_.next(h));
+    const Vertex d = m_.target(m_.next(m_.opposite(h)));
+    if (c == d || m_.halfedge(c, d).is_valid()) return false;  // would not stay manifold
+    const Vec3 pa = position(a), pb = position(b), pc = position(c), pd = position(d);
+    const Vec3 n1 = unit_normal(pa, pb, pc), n2 = unit_normal(pb, pa, pd);
+    if (n1.dot(n2) < min_cosine_) return false;  // not flat enough
+    if (angle(pc, pa, pb) + angle(pd, pb, pa) <= kPi + 1e-12) return false;  // Delaunay already
+    // The new triangles (c, a, d) and (d, b, c) must face the same way.
+    const Vec3 n = n1 + n2;
+    return unit_normal(pc, pa, pd).dot(n) > 0 && unit_normal(pd, pb, pc).dot(n) > 0;
+  }
+
+  // The shortest edge of f if f is a needle: its smallest angle is under
+  // needle_angle_degrees and its shortest edge at most half the next one (a
+  // cap, with two short edges around a flat angle, is left to the flips).
+  Halfedge shortest_edge_if_needle(Face f) const {
+    Halfedge h = m_.halfedge(f);
+    std::array<std::pair<double, Halfedge>, 3> edges;
+    for (int i = 0; i < 3; ++i, h = m_.next(h))
+      edges[i] = {(position(m_.target(h)) - position(m_.source(h))).norm(), h};
+    std::sort(edges.begin(), edges.end(),
+              [](const auto& x, const auto& y) { return x.first < y.first; });
+    const Halfedge shortest = edges[0].second;
+    const double smallest_angle =
+        angle(position(m_.target(m_.next(shortest))), position(m_.source(shortest)),
+              position(m_.target(shortest)));
+    const bool needle = smallest_angle < radians(options_.needle_angle_degrees) &&
+                        edges[0].first <= 0.5 * edges[1].first;
+    return needle ? shortest : Mesh::null_halfedge();
+  }
+
+  // Every triangle around the two ends of h, but the two that vanish, keeps
+  // its normal within max_dihedral_degrees when both ends move to `target`.
+  bool collapse_keeps_orientation(Halfedge h, const Vec3& target) const {
+    const Face gone1 = m_.face(h), gone2 = m_.face(m_.opposite(h));
+    for (Vertex end : {m_.source(h), m_.target(h)})
+      for (Halfedge around : m_.halfedges_around_target(m_.halfedge(end))) {
+        const Face f = m_.face(around);
+        if (f == Mesh::null_face() || f == gone1 || f == gone2) continue;
+        Vec3 before[3], after[3];
+        Halfedge k = m_.halfedge(f);
+        for (int i = 0; i < 3; ++i, k = m_.next(k)) {
+          const Vertex v = m_.target(k);
+          before[i] = position(v);
+          after[i] = (v == m_.source(h) || v == m_.target(h)) ? target : before[i];
+        }
+        const Vec3 n0 = unit_normal(before[0], before[1], before[2]);
+        const Vec3 n1 = unit_normal(after[0], after[1], after[2]);
+        if (n0.dot(n1) < min_cosine_) return false;
+      }
+    return true;
+  }
+
+  Mesh& m_;
+  const CleanupOptions& options_;
+  const double min_cosine_;
+};
+
+}  // namespace
+
+CleanupReport cleanup_isosurface(TriangleMesh& mesh, const CleanupOptions& options) {
+  if (!(options.max_dihedral_degrees >= 0 && options.max_dihedral_degrees < 90))
+    throw std::invalid_argument(
+        "cleanup_isosurface: the dihedral bound must be in [0, 90) degrees, got " +
+        std::to_string(options.max_dihedral_degrees));
+  if (!(options.needle_angle_degrees >= 0 && options.needle_angle_degrees < 60))
+    throw std::invalid_argument(
+        "cleanup_isosurface: the needle angle must be in [0, 60) degrees, got " +
+        std::to_string(options.needle_angle_degrees));
+  Mesh m;
+  std::vector<Vertex> vertex;
+  vertex.reserve(mesh.vertices.size());
+  for (const Vec3& p : mesh.vertices)
+    vertex.push_back(m.add_vertex(Kernel::Point_3(p.x(), p.y(), p.z())));
+  for (const auto& f : mesh.faces)
+    if (m.add_face(vertex[f[0]], vertex[f[1]], vertex[f[2]]) == Mesh::null_face())
+      throw std::invalid_argument("cleanup_isosurface: the mesh is not an oriented manifold");
+
+  Cleaner cleaner(m, options);
+  CleanupReport report;
+  report.flips = cleaner.flip_all();
+  report.collapses = cleaner.collapse_needles();
+  if (report.collapses > 0) report.flips += cleaner.flip_all();
+
+  // Read back, renumbering the vertices that remain in their old order.
+  std::vector<int> index(m.number_of_vertices() + m.number_of_removed_vertices(), -1);
+  mesh.vertices.clear();
+  for (Vertex v : m.vertices()) {
+    index[v.idx()] = static_cast<int>(mesh.vertices.size());
+    const auto& p = m.point(v);
+    mesh.vertices.emplace_back(p.x(), p.y(), p.z());
+  }
+  mesh.faces.clear();
+  for (Face f : m.faces()) {
+    std::array<int, 3> face{};
+    int i = 0;
+    for (Vertex v : m.vertices_around_face(m.halfedge(f))) face[i++] = index[v.idx()];
+    mesh.faces.push_back(face);
+  }
+  return report;
+}
+
+}  // namespace pdd

@@ -1,0 +1,111 @@
+#include <pdd/contour.h>
+#include <pdd/domain.h>
+#include <pdd/quality.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "support/figure2_layouts.h"
+
+namespace pdd {
+namespace {
+
+double signed_volume(const TriangleMesh& m) {
+  double v = 0;
+  for (const auto& f : m.faces)
+    v += m.vertices[f[0]].dot(m.vertices[f[1]].cross(m.vertices[f[2]])) / 6.0;
+  return v;
+}
+
+double max_sphere_deviation(const TriangleMesh& m) {
+  double worst = 0;
+  for (const Vec3& v : m.vertices) worst = std::max(worst, std::abs(v.norm() - 1.0));
+  return worst;
+}
+
+// The isosurface of the random two-layer domain of Figure 2(b): crossings at
+// the midpoints, but caps and needles from the irregular tets.
+TriangleMesh rough_sphere() {
+  const Domain d = test::figure2_domain(test::Figure2Layout::kUnbiasedRandom, 600, 3);
+  return marching_tetrahedra(d.mesh(), d.f()).mesh;
+}
+
+TEST(Cleanup, FewerBadTrianglesSameTopologyAndShape) {
+  TriangleMesh mesh = rough_sphere();
+  const TriangleQuality before = triangle_quality(mesh);
+  const SurfaceTopology topology_before = surface_topology(mesh);
+  const double volume_before = signed_volume(mesh);
+  const double deviation_before = max_sphere_deviation(mesh);
+
+  const CleanupReport report = cleanup_isosurface(mesh);
+  const TriangleQuality after = triangle_quality(mesh);
+  const SurfaceTopology topology_after = surface_topology(mesh);
+  std::cout << report.flips << " flips, " << report.collapses << " collapses; under 20 deg "
+            << before.fraction_below_20 << " -> " << after.fraction_below_20 << ", mean min angle "
+            << before.mean_min_angle << " -> " << after.mean_min_angle << "\n";
+  EXPECT_GT(report.flips, 0);
+  EXPECT_GT(report.collapses, 0);
+  EXPECT_LT(after.fraction_below_20, 0.5 * before.fraction_below_20);
+  EXPECT_GT(after.mean_min_angle, before.mean_min_angle + 2.0);
+
+  EXPECT_TRUE(topology_after.closed);
+  EXPECT_TRUE(topology_after.manifold);
+  EXPECT_EQ(topology_after.components, topology_before.components);
+  EXPECT_EQ(topology_after.euler_characteristic, topology_before.euler_characteristic);
+  // Still facing outwards and the same solid: flips and collapses where the
+  // surface is nearly flat barely move it.
+  EXPECT_NEAR(signed_volume(mesh), volume_before, 0.005 * volume_before);
+  EXPECT_LE(max_sphere_deviation(mesh), deviation_before + 0.01);
+  EXPECT_EQ(mesh.faces.size(), 2 * mesh.vertices.size() - 4);  // a closed genus-0 surface
+}
+
+// Two triangles of a unit square split along the diagonal that leaves two
+// right angles opposite it (not Delaunay when the square is squashed).
+TriangleMesh squashed_pair(double fold_height) {
+  TriangleMesh m;
+  // a (0,0), b (4,1): the shared edge; c above it, d below it.
+  m.vertices = {Vec3(0, 0, 0), Vec3(4, 1, 0), Vec3(1, 2, 0), Vec3(3, -1, fold_height)};
+  m.faces = {{0, 1, 2}, {1, 0, 3}};
+  return m;
+}
+
+TEST(Cleanup, FlipsTheLongDiagonalOfAFlatPair) {
+  TriangleMesh m = squashed_pair(0.0);
+  const double before = triangle_quality(m).min_angle;
+  const CleanupReport report = cleanup_isosurface(m);
+  EXPECT_EQ(report.flips, 1);
+  EXPECT_GT(triangle_quality(m).min_angle, before);
+  // The new diagonal joins c and d, and both faces still point along +z.
+  for (const auto& f : m.faces) {
+    EXPECT_TRUE(std::count(f.begin(), f.end(), 2) && std::count(f.begin(), f.end(), 3));
+    const Vec3 n = (m.vertices[f[1]] - m.vertices[f[0]]).cross(m.vertices[f[2]] - m.vertices[f[0]]);
+    EXPECT_GT(n.z(), 0);
+  }
+}
+
+TEST(Cleanup, LeavesAFoldAlone) {
+  TriangleMesh m = squashed_pair(2.0);  // the normals differ by about 50 degrees
+  const auto faces = m.faces;
+  const CleanupReport report = cleanup_isosurface(m);
+  EXPECT_EQ(report.flips, 0);
+  EXPECT_EQ(m.faces, faces);
+}
+
+TEST(Cleanup, RejectsBadInput) {
+  TriangleMesh m = squashed_pair(0.0);
+  CleanupOptions o;
+  o.max_dihedral_degrees = 90;
+  EXPECT_THROW(cleanup_isosurface(m, o), std::invalid_argument);
+  o = CleanupOptions();
+  o.needle_angle_degrees = -1;
+  EXPECT_THROW(cleanup_isosurface(m, o), std::invalid_argument);
+  // The second face repeats the first one's orientation on the shared edge.
+  m.faces[1] = {0, 1, 3};
+  EXPECT_THROW(cleanup_isosurface(m), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pdd
