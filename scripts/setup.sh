@@ -9,6 +9,7 @@ packages=(
   libsuitesparse-dev libopenblas-dev libtbb-dev
   libcli11-dev libgtest-dev libbenchmark-dev
   time jq  # bench/shared_data.sh: /usr/bin/time -v, JSON fields
+  libcgal-demo  # bench/table1.sh: CGAL's data set (data/points_3/hippo1.ply)
 )
 
 missing=()

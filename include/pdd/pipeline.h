@@ -108,6 +108,11 @@ struct Result {
   bool cancelled = false;  // the progress callback returned false: mesh is empty
 };
 
+// The depth of the octree-based domain (DomainStrategy::kOctree with
+// octree_depth = 0): its finest cells are about the input's average spacing,
+// over a cube 5 % larger than the bounding box's largest side.
+int default_octree_depth(const PointSet& points);
+
 // Reconstructs a closed surface from `points`. Throws InputError for bad
 // input or options, SolverError when a solve fails.
 Result reconstruct(const PointSet& points, const ReconstructOptions& options = {});

@@ -1,6 +1,7 @@
 #include "pipeline/octree_domain.h"
 
 #include <pdd/errors.h>
+#include <pdd/pipeline.h>
 #include <pdd/sizing.h>
 
 #include <Eigen/Geometry>
@@ -43,15 +44,22 @@ void collect_nodes(const std::vector<Vec3>& points, const std::vector<int>& insi
                     nodes);
 }
 
+// The octree's cube: the bounding box's largest side, 5 % larger.
+double octree_side(const Eigen::AlignedBox3d& box) { return box.sizes().maxCoeff() * 1.05; }
+
+Eigen::AlignedBox3d bounding_box(const PointSet& points) {
+  Eigen::AlignedBox3d box;
+  for (const Vec3& p : points.points) box.extend(p);
+  return box;
+}
+
 }  // namespace
 
 void insert_octree_nodes(Domain& domain, const PointSet& points, int depth) {
-  Eigen::AlignedBox3d box;
-  for (const Vec3& p : points.points) box.extend(p);
-  const double side = box.sizes().maxCoeff() * 1.05;
+  const Eigen::AlignedBox3d box = bounding_box(points);
+  const double side = octree_side(box);
   const Vec3 origin = box.center() - Vec3::Constant(side / 2);
-  if (depth <= 0)
-    depth = std::max(1, static_cast<int>(std::ceil(std::log2(side / average_spacing(points)))));
+  if (depth <= 0) depth = default_octree_depth(points);
   if (depth > 12) throw InputError("octree domain: depth " + std::to_string(depth) + " is too deep");
   std::vector<int> all(points.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
@@ -76,3 +84,12 @@ void insert_octree_nodes(Domain& domain, const PointSet& points, int depth) {
 }
 
 }  // namespace pdd::detail
+
+namespace pdd {
+
+int default_octree_depth(const PointSet& points) {
+  const double side = detail::octree_side(detail::bounding_box(points));
+  return std::max(1, static_cast<int>(std::ceil(std::log2(side / average_spacing(points)))));
+}
+
+}  // namespace pdd
