@@ -182,6 +182,11 @@ void add_reconstruct_command(CLI::App& app) {
                   "Optimizer passes per iteration (§3.3)")
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
+  cmd->add_option("--hole-coarsening", args->options.away_from_data.max_factor,
+                  "Target areas grow with the squared distance to the nearest input point "
+                  "beyond 6 average spacings, up to this factor (holes, unseen sides; 1: off)")
+      ->check(CLI::Range(1.0, 1e6))
+      ->capture_default_str();
   cmd->add_flag("--no-cleanup", args->no_cleanup,
                 "Output the marching-tetrahedra isosurface as it is, without the edge flips "
                 "and needle collapses of the final clean-up");

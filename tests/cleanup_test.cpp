@@ -1,8 +1,7 @@
+#include <gtest/gtest.h>
 #include <pdd/contour.h>
 #include <pdd/domain.h>
 #include <pdd/quality.h>
-
-#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>

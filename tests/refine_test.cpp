@@ -213,6 +213,40 @@ TEST(Sizing, AdaptiveIsDenserWhereCurvatureIsHigher) {
   EXPECT_LT(rho, -0.5);
 }
 
+TEST(Sizing, CoarserAwayFromTheData) {
+  // Samples on the upper half of the unit sphere only: the lower half is a
+  // hole as large as the data.
+  PointSet input;
+  const PointSet sphere = test::sample_sphere(4000);
+  for (std::size_t i = 0; i < sphere.size(); ++i)
+    if (sphere.points[i].z() > 0) {
+      input.points.push_back(sphere.points[i]);
+      input.normals.push_back(sphere.normals[i]);
+    }
+  const double target = 0.01;
+  const auto sizing = coarser_away_from_data(uniform_sizing(target), input);
+  const double band = 12 * average_spacing(input);
+  auto facet_at = [](const Vec3& centroid) {
+    Isofacet a{};
+    a.centroid = centroid;
+    return a;
+  };
+  // On the data, within the band, at twice the band from the nearest sample,
+  // and far below the hole (capped).
+  const Vec3 rim(1, 0, 0);
+  const std::vector<Isofacet> facets = {facet_at(Vec3(0, 0, 1)), facet_at(rim - Vec3(0, 0, 0.5 * band)),
+                                        facet_at(rim * (1 + 2 * band)), facet_at(Vec3(0, 0, -3))};
+  const std::vector<double> s = sizing->target_areas(Domain(), facets);
+  EXPECT_DOUBLE_EQ(s[0], target);
+  EXPECT_DOUBLE_EQ(s[1], target);
+  EXPECT_NEAR(s[2], 4 * target, 0.4 * target);  // (d / b)^2 = 4, d within a spacing of 2b
+  EXPECT_DOUBLE_EQ(s[3], 16 * target);
+  DataDistanceOptions off;
+  off.max_factor = 1;
+  EXPECT_EQ(coarser_away_from_data(uniform_sizing(target), input, off)->target_areas(Domain(), facets),
+            std::vector<double>(4, target));
+}
+
 TEST(Sizing, RejectsBadParameters) {
   EXPECT_THROW(uniform_sizing(0.0), InputError);
   EXPECT_THROW(uniform_sizing(-1.0), InputError);
@@ -221,6 +255,12 @@ TEST(Sizing, RejectsBadParameters) {
   Domain d = Domain::initial(test::sample_sphere(100));
   set_analytic_f(d, sphere_f);
   EXPECT_THROW(user->target_areas(d, isofacets(d.mesh(), d.f())), InputError);
+  DataDistanceOptions bad;
+  bad.max_factor = 0.5;
+  EXPECT_THROW(coarser_away_from_data(uniform_sizing(1.0), test::sample_sphere(100), bad), InputError);
+  bad = DataDistanceOptions();
+  bad.band_spacings = 0;
+  EXPECT_THROW(coarser_away_from_data(uniform_sizing(1.0), test::sample_sphere(100), bad), InputError);
 }
 
 }  // namespace

@@ -67,6 +67,8 @@ struct ReconstructOptions {
   double target_edge_length = 0;  // uniform: the target edge; 0: the input's average spacing
   AdaptiveSizingOptions adaptive;  // adaptive sizing of §3.4
   std::shared_ptr<const SizingField> custom_sizing;  // library only: overrides `sizing` when set
+  DataDistanceOptions away_from_data;  // uniform and adaptive: coarser where no input is near
+                                       // (sizing.h; max_factor = 1 turns it off)
 
   int max_iterations = 12;             // solve-optimize-refine iterations at most
   std::size_t max_vertices = 3000000;  // stop refining once the domain has this many vertices

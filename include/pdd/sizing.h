@@ -36,6 +36,22 @@ std::unique_ptr<SizingField> uniform_sizing(double target_area);
 // Any callable from a position (the isofacet's centroid) to a target area.
 std::unique_ptr<SizingField> user_sizing(std::function<double(const Vec3&)> target_area_at);
 
+// Coarser targets where the isosurface has no input nearby (holes, the
+// unseen side of a partial scan): there its shape is invented by the solver,
+// and refining it at the data's resolution adds vertices that carry nothing.
+// Not in the paper. With d the distance from an isofacet's centroid to the
+// nearest input point and b = band_spacings x the input's average spacing,
+// the target becomes inner x min(max_factor, max(1, (d / b)^2)): unchanged
+// within b of the data, growing with the area of a disc of radius d.
+struct DataDistanceOptions {
+  double band_spacings = 12;  // b in average input spacings
+  double max_factor = 16;    // at most this many times the inner target (4x the edge); 1: off
+};
+
+std::unique_ptr<SizingField> coarser_away_from_data(std::shared_ptr<const SizingField> inner,
+                                                    const PointSet& input,
+                                                    const DataDistanceOptions& options = {});
+
 // Curvature-adaptive sizing of §3.4. Values <= 0 mean "derived from the
 // input" as described on each field.
 struct AdaptiveSizingOptions {

@@ -4,18 +4,17 @@
 // (§3.3) an irregular crossing tet leaves a cap or a needle that no vertex
 // move fixes (docs/benchmarks.md, "Isosurface clean-up"). CGAL's Surface_mesh
 // and Euler operations keep the halfedge bookkeeping.
-#include <pdd/contour.h>
-
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/Euler_operations.h>
+#include <pdd/contour.h>
 
 #include <algorithm>
 #include <array>
-#include <utility>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pdd {
@@ -47,9 +46,7 @@ Vec3 unit_normal(const Vec3& a, const Vec3& b, const Vec3& c) {
 class Cleaner {
  public:
   Cleaner(Mesh& mesh, const CleanupOptions& options)
-      : m_(mesh),
-        options_(options),
-        min_cosine_(std::cos(radians(options.max_dihedral_degrees))) {}
+      : m_(mesh), options_(options), min_cosine_(std::cos(radians(options.max_dihedral_degrees))) {}
 
   // Lawson's flips: an edge whose two opposite angles sum to more than pi is
   // swapped (on a plane this maximizes the smallest angle, and terminates;
@@ -115,7 +112,7 @@ class Cleaner {
     if (c == d || m_.halfedge(c, d).is_valid()) return false;  // would not stay manifold
     const Vec3 pa = position(a), pb = position(b), pc = position(c), pd = position(d);
     const Vec3 n1 = unit_normal(pa, pb, pc), n2 = unit_normal(pb, pa, pd);
-    if (n1.dot(n2) < min_cosine_) return false;  // not flat enough
+    if (n1.dot(n2) < min_cosine_) return false;                              // not flat enough
     if (angle(pc, pa, pb) + angle(pd, pb, pa) <= kPi + 1e-12) return false;  // Delaunay already
     // The new triangles (c, a, d) and (d, b, c) must face the same way.
     const Vec3 n = n1 + n2;

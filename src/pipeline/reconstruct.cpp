@@ -36,12 +36,18 @@ struct Cancelled {};
 std::shared_ptr<const SizingField> make_sizing(const PointSet& points,
                                                const ReconstructOptions& options) {
   if (options.custom_sizing) return options.custom_sizing;
-  if (options.sizing == SizingKind::kAdaptive) return adaptive_sizing(points, options.adaptive);
-  double area = options.target_area;
-  if (area <= 0)
-    area = options.target_edge_length > 0 ? area_for_edge_length(options.target_edge_length)
-                                          : default_target_area(points);
-  return uniform_sizing(area);
+  std::shared_ptr<const SizingField> field;
+  if (options.sizing == SizingKind::kAdaptive) {
+    field = adaptive_sizing(points, options.adaptive);
+  } else {
+    double area = options.target_area;
+    if (area <= 0)
+      area = options.target_edge_length > 0 ? area_for_edge_length(options.target_edge_length)
+                                            : default_target_area(points);
+    field = uniform_sizing(area);
+  }
+  if (options.away_from_data.max_factor == 1) return field;
+  return coarser_away_from_data(std::move(field), points, options.away_from_data);
 }
 
 class Run {

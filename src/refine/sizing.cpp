@@ -48,6 +48,36 @@ class UserSizing : public SizingField {
   std::function<double(const Vec3&)> at_;
 };
 
+// The inner target, scaled up with the squared distance to the data.
+class DataDistanceSizing : public SizingField {
+ public:
+  DataDistanceSizing(std::shared_ptr<const SizingField> inner, const PointSet& input,
+                     const DataDistanceOptions& options)
+      : inner_(std::move(inner)),
+        options_(options),
+        band_(options.band_spacings * average_spacing(input)),
+        points_(input.points),
+        neighbors_(points_) {}
+
+  std::vector<double> target_areas(const Domain& domain,
+                                   const std::vector<Isofacet>& facets) const override {
+    std::vector<double> s = inner_->target_areas(domain, facets);
+    tbb::parallel_for(std::size_t(0), facets.size(), [&](std::size_t i) {
+      const Vec3& c = facets[i].centroid;
+      const double d = (points_[neighbors_.query(c, 1).front()] - c).norm() / band_;
+      s[i] *= std::clamp(d * d, 1.0, options_.max_factor);
+    });
+    return s;
+  }
+
+ private:
+  std::shared_ptr<const SizingField> inner_;
+  DataDistanceOptions options_;
+  double band_;
+  std::vector<Vec3> points_;
+  detail::NearestNeighbors neighbors_;
+};
+
 // Curvature-adaptive sizing, §3.4 "Adaptive Sizing Field".
 class AdaptiveSizing : public SizingField {
  public:
@@ -135,6 +165,20 @@ std::unique_ptr<SizingField> uniform_sizing(double target_area) {
     throw InputError("sizing field: the target area must be positive and finite, got " +
                      std::to_string(target_area));
   return std::make_unique<UniformSizing>(target_area);
+}
+
+std::unique_ptr<SizingField> coarser_away_from_data(std::shared_ptr<const SizingField> inner,
+                                                    const PointSet& input,
+                                                    const DataDistanceOptions& options) {
+  if (!inner) throw InputError("sizing field: no inner field to coarsen");
+  if (input.size() < 2) throw InputError("sizing field: at least two input points are needed");
+  if (!(options.band_spacings > 0) || !std::isfinite(options.band_spacings))
+    throw InputError("sizing field: the data band must be positive, got " +
+                     std::to_string(options.band_spacings));
+  if (!(options.max_factor >= 1) || !std::isfinite(options.max_factor))
+    throw InputError("sizing field: the coarsening factor must be >= 1, got " +
+                     std::to_string(options.max_factor));
+  return std::make_unique<DataDistanceSizing>(std::move(inner), input, options);
 }
 
 std::unique_ptr<SizingField> user_sizing(std::function<double(const Vec3&)> target_area_at) {
