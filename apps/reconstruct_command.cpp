@@ -184,7 +184,7 @@ void add_reconstruct_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--hole-coarsening", args->options.away_from_data.max_factor,
                   "Target areas grow with the squared distance to the nearest input point "
-                  "beyond 6 average spacings, up to this factor (holes, unseen sides; 1: off)")
+                  "beyond 12 average spacings, up to this factor (holes, unseen sides; 1: off)")
       ->check(CLI::Range(1.0, 1e6))
       ->capture_default_str();
   cmd->add_flag("--no-cleanup", args->no_cleanup,

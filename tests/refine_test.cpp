@@ -231,16 +231,16 @@ TEST(Sizing, CoarserAwayFromTheData) {
     a.centroid = centroid;
     return a;
   };
-  // On the data, within the band, at twice the band from the nearest sample,
-  // and far below the hole (capped).
+  // On the data, within the band, at 1.5 bands from the nearest sample, and
+  // far below the hole (capped).
   const Vec3 rim(1, 0, 0);
   const std::vector<Isofacet> facets = {facet_at(Vec3(0, 0, 1)), facet_at(rim - Vec3(0, 0, 0.5 * band)),
-                                        facet_at(rim * (1 + 2 * band)), facet_at(Vec3(0, 0, -3))};
+                                        facet_at(rim * (1 + 1.5 * band)), facet_at(Vec3(0, 0, -3))};
   const std::vector<double> s = sizing->target_areas(Domain(), facets);
   EXPECT_DOUBLE_EQ(s[0], target);
   EXPECT_DOUBLE_EQ(s[1], target);
-  EXPECT_NEAR(s[2], 4 * target, 0.4 * target);  // (d / b)^2 = 4, d within a spacing of 2b
-  EXPECT_DOUBLE_EQ(s[3], 16 * target);
+  EXPECT_NEAR(s[2], 2.25 * target, 0.3 * target);  // (d / b)^2, d within a spacing of 1.5 b
+  EXPECT_DOUBLE_EQ(s[3], 4 * target);
   DataDistanceOptions off;
   off.max_factor = 1;
   EXPECT_EQ(coarser_away_from_data(uniform_sizing(target), input, off)->target_areas(Domain(), facets),

@@ -45,7 +45,7 @@ std::unique_ptr<SizingField> user_sizing(std::function<double(const Vec3&)> targ
 // within b of the data, growing with the area of a disc of radius d.
 struct DataDistanceOptions {
   double band_spacings = 12;  // b in average input spacings
-  double max_factor = 16;    // at most this many times the inner target (4x the edge); 1: off
+  double max_factor = 4;     // at most this many times the inner target (2x the edge); 1: off
 };
 
 std::unique_ptr<SizingField> coarser_away_from_data(std::shared_ptr<const SizingField> inner,
