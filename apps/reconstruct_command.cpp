@@ -31,6 +31,7 @@ struct ReconstructArgs {
   std::string stats_output;   // "" or a .json for the per-iteration statistics
   std::string iterations_dir; // "" or a folder for every iteration's isosurface and domain
   std::string solver = to_string(ReconstructOptions{}.solver.kind);  // ssd | poisson | spectral
+  std::string linear = to_string(ReconstructOptions{}.solver.linear.method);  // auto | cholmod | cg
   std::string strategy = to_string(ReconstructOptions{}.strategy);   // progressive | ...
   std::string sizing = "uniform";                                     // uniform | adaptive
   ReconstructOptions options;
@@ -83,6 +84,7 @@ IterationCallback iteration_writer(const std::string& folder, bool ascii) {
 
 void reconstruct(ReconstructArgs& args) {
   args.options.solver.kind = parse_solver_kind(args.solver);
+  args.options.solver.linear.method = parse_linear_method(args.linear);
   args.options.strategy = parse_domain_strategy(args.strategy);
   args.options.sizing = parse_sizing_kind(args.sizing);
   // Output paths first, so that a typo costs nothing.
@@ -144,6 +146,11 @@ void add_reconstruct_command(CLI::App& app) {
   cmd->add_option("-o,--output", args->output, "Output mesh: .ply .off .obj")->required();
   cmd->add_option("--solver", args->solver, "Implicit solver (§3.5)")
       ->check(CLI::IsMember({"ssd", "poisson", "spectral"}))
+      ->capture_default_str();
+  cmd->add_option("--linear", args->linear,
+                  "Linear solves: auto (CHOLMOD for SSD and spectral, CG for Poisson), cholmod, "
+                  "or cg (preconditioned conjugate gradients: about half the memory, slower)")
+      ->check(CLI::IsMember({"auto", "cholmod", "cg"}))
       ->capture_default_str();
   cmd->add_option("--domain", args->strategy,
                   "How the domain is built (§4.2): progressive (ours), direct (refine without "

@@ -46,6 +46,10 @@ enum class Preconditioner {
   kIncompleteCholesky,  // Eigen's IncompleteCholesky (AMD ordering): costly to build, fewer iterations
 };
 
+// "auto", "cholmod" or "cg" (any case); InputError otherwise.
+LinearMethod parse_linear_method(const std::string& name);
+std::string to_string(LinearMethod method);
+
 struct LinearSolverOptions {
   LinearMethod method = LinearMethod::kAuto;           // see LinearMethod
   Preconditioner preconditioner = Preconditioner::kAuto;  // see Preconditioner

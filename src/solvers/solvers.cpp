@@ -21,6 +21,25 @@ SolverKind parse_solver_kind(const std::string& name) {
   throw InputError("unknown solver \"" + name + "\" (expected poisson, ssd or spectral)");
 }
 
+LinearMethod parse_linear_method(const std::string& name) {
+  std::string lower = name;
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (lower == "auto") return LinearMethod::kAuto;
+  if (lower == "cholmod") return LinearMethod::kCholmod;
+  if (lower == "cg") return LinearMethod::kConjugateGradient;
+  throw InputError("unknown linear solver \"" + name + "\" (expected auto, cholmod or cg)");
+}
+
+std::string to_string(LinearMethod method) {
+  switch (method) {
+    case LinearMethod::kAuto: return "auto";
+    case LinearMethod::kCholmod: return "cholmod";
+    case LinearMethod::kConjugateGradient: return "cg";
+  }
+  return "unknown";
+}
+
 std::string to_string(SolverKind kind) {
   switch (kind) {
     case SolverKind::kPoisson: return "poisson";
