@@ -7,7 +7,7 @@
 // Figure 13) and DIR/optimizer_figure14.txt.
 //
 // The domain ("round 0"): Domain::initial, then K iterations of SSD solve +
-// refinement with the uniform sizing (default_target_area, §3.4), with one
+// refinement with the uniform sizing (edge = the average spacing, §3.4), with one
 // ASAP round before each solve but the first and none after the last
 // refinement. Table 2 / Figure 13 run pure ASAP rounds
 // (lambda_m = 0) on it; after 0, 3, 5 and 10 rounds they count the CG
@@ -142,7 +142,7 @@ void asap_step(Domain& domain) {
 Domain refined_domain(const PointSet& input, int iterations, Log& log) {
   auto solver = ssd_solver(LinearMethod::kCholmod);
   Domain domain = Domain::initial(input);
-  const auto sizing = uniform_sizing(default_target_area(input));
+  const auto sizing = uniform_sizing(area_for_edge_length(average_spacing(input)));
   std::mt19937_64 rng(1);
   for (int k = 0; k < iterations; ++k) {
     if (k > 0) asap_step(domain);
@@ -225,7 +225,7 @@ void ablation(const PointSet& input, int iterations, Log& log) {
                                             {"mid-edge only", true, mid_edge_only},
                                             {"ASAP only", true, asap_only},
                                             {"ASAP + mid-edge", true, both}};
-  const auto sizing = uniform_sizing(default_target_area(input));
+  const auto sizing = uniform_sizing(area_for_edge_length(average_spacing(input)));
   std::vector<std::string> histograms;
   Histogram any;
   log(format("%-16s %8s %9s %9s %7s %7s %7s %7s %10s %9s %7s\n", "strategy", "vertices", "triangles",

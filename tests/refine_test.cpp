@@ -213,6 +213,17 @@ TEST(Sizing, AdaptiveIsDenserWhereCurvatureIsHigher) {
   EXPECT_LT(rho, -0.5);
 }
 
+TEST(Sizing, DefaultEdgeIsTheSpacingCappedByTheDiagonal) {
+  // Unit sphere: bounding-box diagonal 2 sqrt(3), so the cap is 0.0346.
+  const double cap = 0.01 * 2 * std::sqrt(3.0);
+  const PointSet dense = test::sample_sphere(20000), sparse = test::sample_sphere(300);
+  EXPECT_LT(average_spacing(dense), cap);
+  EXPECT_DOUBLE_EQ(default_target_edge(dense), average_spacing(dense));
+  EXPECT_GT(average_spacing(sparse), cap);
+  EXPECT_NEAR(default_target_edge(sparse), cap, 0.01 * cap);  // 300 samples nearly fill the box
+  EXPECT_DOUBLE_EQ(default_target_area(sparse), area_for_edge_length(default_target_edge(sparse)));
+}
+
 TEST(Sizing, CoarserAwayFromTheData) {
   // Samples on the upper half of the unit sphere only: the lower half is a
   // hole as large as the data.

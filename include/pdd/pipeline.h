@@ -64,7 +64,7 @@ struct ReconstructOptions {
 
   SizingKind sizing = SizingKind::kUniform;
   double target_area = 0;         // uniform: the target isofacet area; 0: from target_edge_length
-  double target_edge_length = 0;  // uniform: the target edge; 0: the input's average spacing
+  double target_edge_length = 0;  // uniform: the target edge; 0: default_target_edge (sizing.h)
   AdaptiveSizingOptions adaptive;  // adaptive sizing of §3.4
   std::shared_ptr<const SizingField> custom_sizing;  // library only: overrides `sizing` when set
   DataDistanceOptions away_from_data;  // uniform and adaptive: coarser where no input is near

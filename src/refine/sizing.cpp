@@ -8,6 +8,7 @@
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/compute_average_spacing.h>
 
+#include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -156,8 +157,14 @@ double average_spacing(const PointSet& input, int k) {
   return CGAL::compute_average_spacing<CGAL::Sequential_tag>(points, k);
 }
 
+double default_target_edge(const PointSet& input) {
+  Eigen::AlignedBox3d box;
+  for (const Vec3& p : input.points) box.extend(p);
+  return std::min(average_spacing(input), 0.01 * box.diagonal().norm());
+}
+
 double default_target_area(const PointSet& input) {
-  return area_for_edge_length(average_spacing(input));
+  return area_for_edge_length(default_target_edge(input));
 }
 
 std::unique_ptr<SizingField> uniform_sizing(double target_area) {
