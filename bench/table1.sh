@@ -131,7 +131,7 @@ for scan in "${scans[@]}"; do
 
   spacing="$("$reference_tool" spacing "$input")"
   edge_args=()
-  edge="$spacing"
+  edge="$("$reference_tool" default-edge "$input")"
   if [ -n "$edge_ratio" ]; then
     edge="$(awk -v s="$spacing" -v r="$edge_ratio" 'BEGIN { printf "%.10g", s * r }')"
     edge_args=(--target-edge "$edge")
@@ -180,7 +180,7 @@ for scan in "${scans[@]}"; do
   done
 
   section="$(
-    echo "### $name: ${points} points; $( [ -n "$edge_ratio" ] && echo "target edge $edge_ratio x the average spacing $(printf '%.4g' "$spacing") = $(printf '%.4g' "$edge")" || echo "pdd's default sizing (target edge = the average spacing $(printf '%.4g' "$spacing"))" ); reference layers $(printf '%.4g' "$reference_edge") apart"
+    echo "### $name: ${points} points; $( [ -n "$edge_ratio" ] && echo "target edge $edge_ratio x the average spacing $(printf '%.4g' "$spacing") = $(printf '%.4g' "$edge")" || echo "pdd's default sizing (target edge = the average spacing $(printf '%.4g' "$spacing") capped at 1 % of the diagonal = $(printf '%.4g' "$edge"))" ); reference layers $(printf '%.4g' "$reference_edge") apart"
     if [ -n "$partial" ]; then
       echo
       echo "A partial scan: the first five distances compare the scanned parts (faces whose centroid is within"

@@ -7,7 +7,9 @@
 // `pdd reconstruct --domain` against it.
 //
 //   table1_reference spacing INPUT
-//       prints the input's average spacing (pdd's default target edge)
+//       prints the input's average spacing
+//   table1_reference default-edge INPUT
+//       prints pdd's default target edge (pdd::default_target_edge)
 //   table1_reference build INPUT OUTPUT.ply STATS.json --edge H
 //                    [--octree-depth D] [--asap-rounds R] [--seed S]
 //       builds the reference (below)
@@ -74,6 +76,7 @@ struct Options {
 [[noreturn]] void usage(const std::string& why) {
   std::cerr << "table1_reference: " << why << "\n"
             << "usage: table1_reference spacing INPUT\n"
+            << "       table1_reference default-edge INPUT\n"
             << "       table1_reference crop MESH INPUT RADIUS OUTPUT.ply\n"
             << "       table1_reference build INPUT OUTPUT.ply STATS.json --edge H"
                " [--octree-depth D] [--asap-rounds R] [--seed S]\n";
@@ -260,6 +263,10 @@ int main(int argc, char** argv) {
       std::printf("%.10g\n", average_spacing(read_points(args[1])));
       return 0;
     }
+    if (args.size() == 2 && args[0] == "default-edge") {
+      std::printf("%.10g\n", default_target_edge(read_points(args[1])));
+      return 0;
+    }
     if (args.size() == 5 && args[0] == "crop") {
       const TriangleMesh kept =
           crop(read_mesh(args[1]), read_points(args[2]).points, number("RADIUS", args[3]));
@@ -270,7 +277,7 @@ int main(int argc, char** argv) {
     }
     if (args.size() < 4 || args[0] != "build")
       usage(
-          "expected 'spacing INPUT', 'build INPUT OUTPUT STATS --edge H' or 'crop MESH INPUT "
+          "expected 'spacing INPUT', 'default-edge INPUT', 'build INPUT OUTPUT STATS --edge H' or 'crop MESH INPUT "
           "RADIUS OUTPUT'");
     Options o;
     o.input = args[1];
