@@ -27,7 +27,6 @@
 #include <pdd/solvers.h>
 
 #include <Eigen/Geometry>
-#include <Eigen/IterativeLinearSolvers>
 
 #include <algorithm>
 #include <chrono>
@@ -168,22 +167,7 @@ void asap_rounds(const Domain& start, const PointSet& input, const OptimizerOpti
   for (int round = 0; round <= 10; ++round) {
     if (round == 0 || round == 3 || round == 5 || round == 10) {
       // Plain Eigen CG (Jacobi preconditioner) from 0, as in Table 2.
-      // The weights the recorded Table 2 used (alpha = beta = 1, gamma = 0.1):
-      // a Hessian-dominated system, whose conditioning follows the tets' shapes.
-      SsdOptions smooth;
-      smooth.alpha = 1;
-      smooth.gamma = 0.1;
-      const LinearSystem system = ssd_system(domain, input, smooth);
-      const SparseMatrix& A = system.A;
-      const Eigen::VectorXd& rhs = system.b;
-      Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper> cg;
-      cg.setTolerance(1e-10);
-      cg.setMaxIterations(1000000);
-      const auto t0 = Clock::now();
-      cg.compute(A);
-      const Eigen::VectorXd f = cg.solve(rhs);
-      const double seconds = seconds_since(t0);
-      const double residual = (A * f - rhs).norm() / rhs.norm();
+      const ConditioningProbe probe = ssd_conditioning_probe(domain, input);
       // The project's SSD solver, CG with incomplete Cholesky, from 0.
       int ic_iterations = -1;
       double ic_residual = 0;
@@ -196,7 +180,7 @@ void asap_rounds(const Domain& start, const PointSet& input, const OptimizerOpti
       }
       const TetQuality q = tet_quality(domain.mesh());
       log(format("%6d %8ld %8.2f %10.3g %9d %10.3g %9.3f %8.3f %8.2f %9.3g\n", round,
-                 static_cast<long>(cg.iterations()), seconds, residual, ic_iterations, ic_residual,
+                 probe.iterations, probe.seconds, probe.residual, ic_iterations, ic_residual,
                  q.min_dihedral, 100 * q.fraction_min_dihedral_below_10, q.mean_min_dihedral,
                  energy));
       histograms.push_back(format("%6d", round) + histogram_row(q.dihedral_histogram));

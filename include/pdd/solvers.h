@@ -180,4 +180,16 @@ struct LinearSystem {
 LinearSystem ssd_system(const Domain& domain, const PointSet& points,
                         const SsdOptions& options = {});
 
+// Table 2's measure of the domain's conditioning: plain conjugate gradients
+// (Jacobi preconditioner) from 0 to a relative residual of 1e-10 on the SSD
+// system with alpha = beta = 1, gamma = 0.1, a Hessian-dominated system whose
+// conditioning follows the shape of the tets.
+struct ConditioningProbe {
+  long iterations = 0;
+  double residual = 0;  // |A f - b| / |b| at the end
+  double seconds = 0;   // CG alone (setup and iterations), not the assembly
+  bool converged = false;
+};
+ConditioningProbe ssd_conditioning_probe(const Domain& domain, const PointSet& points);
+
 }  // namespace pdd
