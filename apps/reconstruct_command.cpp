@@ -152,6 +152,11 @@ void add_reconstruct_command(CLI::App& app) {
                   "or cg (preconditioned conjugate gradients: about half the memory, slower)")
       ->check(CLI::IsMember({"auto", "cholmod", "cg"}))
       ->capture_default_str();
+  cmd->add_option("--loop-tolerance", args->options.loop_solve.tolerance,
+                  "Relative residual of the solves before the final one on large domains "
+                  "(CG from the previous solution; 0: solve them like the final one)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->add_option("--domain", args->strategy,
                   "How the domain is built (§4.2): progressive (ours), direct (refine without "
                   "optimizer or intermediate solves), input (input points + Delaunay "

@@ -167,10 +167,47 @@ TEST(Pipeline, OtherDomainStrategiesReconstructTheSphere) {
   }
 }
 
+TEST(Pipeline, LoopSolvesAreLooseAndTheFinalSolveExact) {
+  // LoopSolveOptions on every domain (min_vertices = 0): the solves after the
+  // first and before the final one stop at the loose tolerance, warm-started
+  // by CG; the final solve is a direct one; the surface matches the run whose
+  // loop solves are all exact.
+  const PointSet input = test::sample_sphere(1500);
+  ReconstructOptions o = fast_options(SolverKind::kSsd, 0.12);
+  o.loop_solve.min_vertices = 0;
+  o.loop_solve.tolerance = 1e-3;
+  const Result loose = reconstruct(input, o);
+  ASSERT_GE(loose.iterations.size(), 3u);
+  EXPECT_EQ(loose.iterations.front().solver.method, "cholmod");
+  for (std::size_t i = 1; i + 1 < loose.iterations.size(); ++i) {
+    const SolverStats& s = loose.iterations[i].solver;
+    EXPECT_EQ(s.method, "cg+jacobi") << "iteration " << i + 1;
+    EXPECT_LE(s.residual, 1e-3) << "iteration " << i + 1;
+    EXPECT_GT(s.residual, 1e-8) << "iteration " << i + 1 << ": not a loose solve";
+  }
+  EXPECT_EQ(loose.iterations.back().solver.method, "cholmod");
+  EXPECT_LT(loose.iterations.back().solver.residual, 1e-9);
+
+  o.loop_solve.tolerance = 0;
+  const Result exact = reconstruct(input, o);
+  for (const IterationStats& s : exact.iterations) EXPECT_EQ(s.solver.method, "cholmod");
+  auto deviation = [](const Vec3& p) { return std::abs(p.norm() - 1.0); };
+  const Distances d_loose = vertex_distances(loose.mesh, deviation);
+  const Distances d_exact = vertex_distances(exact.mesh, deviation);
+  std::cout << "mean deviation: loose loop " << d_loose.mean << ", exact loop " << d_exact.mean
+            << "; faces " << loose.mesh.faces.size() << " / " << exact.mesh.faces.size() << "\n";
+  EXPECT_LT(d_loose.mean, 1.2 * d_exact.mean + 1e-4);
+  EXPECT_NEAR(static_cast<double>(loose.mesh.faces.size()),
+              static_cast<double>(exact.mesh.faces.size()), 0.1 * exact.mesh.faces.size());
+}
+
 TEST(Pipeline, RejectsBadOptions) {
   const PointSet input = test::sample_sphere(100);
   ReconstructOptions o;
   o.max_iterations = 0;
+  EXPECT_THROW(reconstruct(input, o), InputError);
+  o = ReconstructOptions();
+  o.loop_solve.tolerance = -1;
   EXPECT_THROW(reconstruct(input, o), InputError);
   EXPECT_THROW(parse_domain_strategy("quadtree"), InputError);
   EXPECT_THROW(parse_sizing_kind("curvy"), InputError);

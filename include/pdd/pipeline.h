@@ -51,10 +51,24 @@ class Domain;
 using IterationCallback =
     std::function<void(const IterationStats&, const Domain&, const TriangleMesh& isosurface)>;
 
+// The solves inside the loop only guide the optimizer and the refiner: the
+// final solve decides the output. On large domains they therefore run
+// conjugate gradients (Jacobi) from the previous iteration's f, carried over
+// to the refined domain, to a loose tolerance: a coarse-to-fine cascade, each
+// domain starting from the solution of the coarser one. Not for the spectral
+// solver, whose Lanczos iterations need exact inner solves. Measured in
+// docs/benchmarks.md ("Loop solves").
+struct LoopSolveOptions {
+  double tolerance = 3e-4;           // relative residual |A f - b| / |b|; 0: solve like the final
+  std::size_t min_vertices = 10000;  // smaller domains are solved like the final solve (cheap,
+                                     // and their coarse warm start is far from the solution)
+};
+
 struct ReconstructOptions {
   DomainStrategy strategy = DomainStrategy::kProgressive;
   DomainOptions domain;        // §3.2: sphere 1.4 r, 100 points, radius-edge 1.3
   SolverOptions solver;        // §3.5: SSD by default
+  LoopSolveOptions loop_solve;  // the solves before the final one (see LoopSolveOptions)
   OptimizerOptions optimizer;  // §3.3: lambda_a = 60, lambda_m = 3 (optimize.h)
   int optimizer_rounds = 2;    // optimizer passes per iteration (the paper's Figure 7 shows one or
                                // more per iteration; two measured better, docs/benchmarks.md)

@@ -50,12 +50,28 @@ std::shared_ptr<const SizingField> make_sizing(const PointSet& points,
   return coarser_away_from_data(std::move(field), points, options.away_from_data);
 }
 
+// The solver of the loop's solves on large domains (LoopSolveOptions), or
+// none when they are solved like the final one.
+std::unique_ptr<ImplicitSolver> make_loop_solver(const ReconstructOptions& options) {
+  const LoopSolveOptions& loop = options.loop_solve;
+  if (!(loop.tolerance >= 0))
+    throw InputError("reconstruct: the loop solve tolerance must be >= 0, got " +
+                     std::to_string(loop.tolerance));
+  if (loop.tolerance == 0 || options.solver.kind == SolverKind::kSpectral) return nullptr;
+  SolverOptions solver = options.solver;
+  solver.linear.method = LinearMethod::kConjugateGradient;
+  solver.linear.preconditioner = Preconditioner::kJacobi;
+  solver.linear.cg_tolerance = std::max(loop.tolerance, solver.linear.cg_tolerance);
+  return make_solver(solver);
+}
+
 class Run {
  public:
   Run(const PointSet& points, const ReconstructOptions& options)
       : points_(points),
         options_(options),
         solver_(make_solver(options.solver)),
+        loop_solver_(make_loop_solver(options)),
         rng_(options.seed),
         start_(Clock::now()) {}
 
@@ -64,7 +80,7 @@ class Run {
     const auto sizing = make_sizing(points_, options_);
     bool refined_last = false;  // the domain changed since it was last optimized
     for (int it = 1; it <= options_.max_iterations; ++it) {
-      IterationStats stats = solve(domain, it);
+      IterationStats stats = solve(domain, it, loop_solver(domain, it));
       optimize(domain, it, stats);
       refined_last = false;
       const bool over_budget = domain.num_vertices() >= options_.max_vertices;
@@ -95,7 +111,7 @@ class Run {
   Result direct() {
     Domain domain = initial_domain();
     const auto sizing = make_sizing(points_, options_);
-    result_.iterations.push_back(solve(domain, 1));
+    result_.iterations.push_back(solve(domain, 1, *solver_));
     for (int it = 1; it <= options_.max_iterations; ++it) {
       if (domain.num_vertices() >= options_.max_vertices ||
           sizing_met(isofacet_area_stats(domain, *sizing)))
@@ -147,17 +163,25 @@ class Run {
     if (!options_.progress(p)) throw Cancelled{};
   }
 
+  // The solver for iteration `iteration` of the loop: the loop solver once
+  // there is a previous f and the domain is large enough.
+  ImplicitSolver& loop_solver(const Domain& domain, int iteration) {
+    const bool loose = loop_solver_ && iteration > 1 &&
+                       domain.num_vertices() >= options_.loop_solve.min_vertices;
+    return loose ? *loop_solver_ : *solver_;
+  }
+
   // Solves on the domain (warm-started from the current f) and measures the
   // isosurface; the contour is kept for the final iteration.
-  IterationStats solve(Domain& domain, int iteration) {
+  IterationStats solve(Domain& domain, int iteration, ImplicitSolver& solver) {
     IterationStats stats;
     stats.iteration = iteration;
     report("solve", iteration, domain);
     auto t = Clock::now();
     const std::vector<double> warm = domain.f();
-    domain.set_f(solver_->solve(domain, points_, &warm));
+    domain.set_f(solver.solve(domain, points_, &warm));
     stats.seconds_solve = seconds_since(t);
-    stats.solver = solver_->stats();
+    stats.solver = solver.stats();
 
     report("contour", iteration, domain);
     t = Clock::now();
@@ -215,7 +239,7 @@ class Run {
     const int last = result_.iterations.empty() ? 1 : result_.iterations.back().iteration + 1;
     IterationStats optimized;
     if (optimize_first) optimize(domain, last, optimized);
-    result_.iterations.push_back(solve(domain, last));
+    result_.iterations.push_back(solve(domain, last, *solver_));
     result_.iterations.back().seconds_optimize = optimized.seconds_optimize;
     result_.iterations.back().optimizer_cg_iterations = optimized.optimizer_cg_iterations;
     result_.iterations.back().rejected_moves = optimized.rejected_moves;
@@ -228,7 +252,8 @@ class Run {
 
   const PointSet& points_;
   const ReconstructOptions& options_;
-  std::unique_ptr<ImplicitSolver> solver_;
+  std::unique_ptr<ImplicitSolver> solver_;       // the final solve, and small domains
+  std::unique_ptr<ImplicitSolver> loop_solver_;  // LoopSolveOptions; null when off
   std::mt19937_64 rng_;
   Clock::time_point start_;
   IsoSurface contour_;
