@@ -110,6 +110,21 @@ TEST(Domain, InterpolationReproducesLinearFunctionsExactly) {
   EXPECT_THROW(d.interpolate(Vec3(5, 5, 5), f), std::out_of_range);
 }
 
+TEST(Domain, LocatingFromANearbyVertexFindsTheSameTet) {
+  Domain d(random_points_in_ball(500, 1.0, 6));
+  std::mt19937 rng(7);
+  std::normal_distribution<double> jitter(0.0, 0.02);
+  for (int v = 0; v < static_cast<int>(d.num_vertices()); v += 5) {
+    const Vec3 p = d.vertices()[v] + Vec3(jitter(rng), jitter(rng), jitter(rng));
+    const Location expected = d.locate(p), found = d.locate(p, v);
+    EXPECT_EQ(found.tet, expected.tet) << "near vertex " << v;
+    if (found.tet >= 0)
+      for (int i = 0; i < 4; ++i) EXPECT_NEAR(found.barycentric[i], expected.barycentric[i], 1e-12);
+  }
+  EXPECT_EQ(d.locate(Vec3(5, 5, 5), 0).tet, -1);
+  EXPECT_THROW(d.locate(Vec3(0, 0, 0), static_cast<int>(d.num_vertices())), std::out_of_range);
+}
+
 TEST(Domain, InsertKeepsIndicesAndInterpolatesF) {
   Domain d(random_points_in_ball(300, 1.0, 6));
   std::vector<double> f;

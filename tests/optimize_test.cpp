@@ -222,6 +222,30 @@ TEST(DampingTerm, KeepsBoundaryVerticesFixedToMachinePrecision) {
   EXPECT_EQ(hull_vertices(domain), hull_vertices(Domain(before)));
 }
 
+TEST(DomainEnergy, QuadraticIsSymmetricPositiveSemiDefiniteOnEdgeBlocks) {
+  Domain domain = shell_domain();
+  domain.set_f(sphere_function(domain));
+  const DomainEnergy energy = domain_energy(domain);
+  const Eigen::SparseMatrix<double>& A = energy.A;
+  ASSERT_EQ(A.rows(), static_cast<Eigen::Index>(3 * domain.num_vertices()));
+  EXPECT_LT((A - Eigen::SparseMatrix<double>(A.transpose())).norm(), 1e-12 * A.norm());
+  // Entries only where two vertices share a tet.
+  std::set<std::pair<int, int>> pairs;
+  for (const auto& t : domain.tets())
+    for (int i : t)
+      for (int j : t) pairs.insert({i, j});
+  for (Eigen::Index j = 0; j < A.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it)
+      ASSERT_TRUE(pairs.count({static_cast<int>(it.row() / 3), static_cast<int>(j / 3)}));
+  std::mt19937 rng(3);
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 5; ++trial) {
+    Eigen::VectorXd x(A.rows());
+    for (Eigen::Index i = 0; i < x.size(); ++i) x[i] = normal(rng);
+    EXPECT_GE(x.dot(A * x), -1e-12 * A.norm() * x.squaredNorm());
+  }
+}
+
 TEST(Optimizer, OnePassNeverIncreasesTheEnergy) {
   for (const OptimizerOptions& options :
        {OptimizerOptions{}, only(true, false, true), only(false, true, true), only(true, true, false)}) {

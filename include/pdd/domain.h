@@ -83,6 +83,9 @@ class Domain {
 
   // Point location (§3.5, the sampling matrix Phi; §3.3, carrying f over).
   Location locate(const Vec3& p) const;
+  // The same, walking from the tets of `near_vertex`: a few steps when p is
+  // close to it (a vertex's new position), instead of a walk across the domain.
+  Location locate(const Vec3& p, int near_vertex) const;
   // Value of the piecewise-linear interpolant of `values` at p; p must lie in
   // the domain (throws std::out_of_range otherwise).
   double interpolate(const Vec3& p, const std::vector<double>& values) const;

@@ -64,12 +64,12 @@ Vec3 Domain::center() const { return impl_->center; }
 double Domain::radius() const { return impl_->radius; }
 
 Location Domain::locate(const Vec3& p) const {
-  Location loc;
-  const auto c = impl_->finite_cell_containing(p);
-  if (c == Delaunay::Cell_handle()) return loc;
-  loc.tet = c->info();
-  loc.barycentric = Impl::barycentric(c, p);
-  return loc;
+  return Impl::location(impl_->finite_cell_containing(p), p);
+}
+
+Location Domain::locate(const Vec3& p, int near_vertex) const {
+  return Impl::location(impl_->finite_cell_containing(p, impl_->handles.at(near_vertex)->cell()),
+                        p);
 }
 
 double Domain::interpolate(const Vec3& p, const std::vector<double>& values) const {
@@ -119,15 +119,9 @@ void Domain::move_vertices(const std::vector<Vec3>& new_positions) {
   // f at the new positions, interpolated in the old triangulation; a vertex
   // that left the old domain keeps its value.
   std::vector<double> f(n);
-  Delaunay::Cell_handle hint;
   for (std::size_t i = 0; i < n; ++i) {
-    const auto c = d.finite_cell_containing(new_positions[i], hint);
-    if (c == Delaunay::Cell_handle()) {
-      f[i] = d.f[i];
-    } else {
-      f[i] = d.interpolate_in(c, new_positions[i], d.f);
-      hint = c;
-    }
+    const auto c = d.finite_cell_containing(new_positions[i], d.handles[i]->cell());
+    f[i] = c == Delaunay::Cell_handle() ? d.f[i] : d.interpolate_in(c, new_positions[i], d.f);
   }
   Delaunay rebuilt;
   std::vector<std::pair<detail::Point, int>> items;

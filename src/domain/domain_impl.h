@@ -94,6 +94,15 @@ struct Domain::Impl {
     return w;
   }
 
+  // The tet c (null: outside) and p's barycentric coordinates in it.
+  static Location location(Delaunay::Cell_handle c, const Vec3& p) {
+    Location loc;
+    if (c == Delaunay::Cell_handle()) return loc;
+    loc.tet = c->info();
+    loc.barycentric = barycentric(c, p);
+    return loc;
+  }
+
   double interpolate_in(Delaunay::Cell_handle c, const Vec3& p,
                         const std::vector<double>& values) const {
     const auto w = barycentric(c, p);

@@ -81,18 +81,10 @@ void add_asap_term(const Domain& domain, double weight_scale, QuadraticAccumulat
   // per coordinate, x^T P x - 2 q^T x + |q|^2 with P = I_4 - 1/4 (the
   // centering, P q = q since the targets are centered). Zero-volume tets
   // have zero weight.
-  const std::size_t first = q.isotropic.size();
-  q.isotropic.resize(first + 16 * m);
-  tbb::parallel_for(std::size_t(0), m, [&](std::size_t t) {
-    const double w = weight_scale * std::abs(volume[t]);
-    for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 4; ++j)
-        q.isotropic[first + 16 * t + 4 * i + j] =
-            Triplet(tets[t][i], tets[t][j], w * ((i == j ? 1.0 : 0.0) - 0.25));
-  });
   for (std::size_t t = 0; t < m; ++t) {
     const double w = weight_scale * std::abs(volume[t]);
     for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) q.add_isotropic(tets[t][i], tets[t][j], w * ((i == j) - 0.25));
       q.b.segment<3>(3 * tets[t][i]) += w * targets[t][i];
       q.c += w * targets[t][i].squaredNorm();
     }

@@ -46,7 +46,7 @@ void add_damping_term(const Domain& domain, const std::vector<bool>& fixed, doub
   for (std::size_t v = 0; v < x.size(); ++v) {
     if (fixed[v] || g[v] == 0) continue;
     const double w = weight * g[v];
-    q.isotropic.emplace_back(static_cast<int>(v), static_cast<int>(v), w);
+    q.add_isotropic(static_cast<int>(v), static_cast<int>(v), w);
     q.b.segment<3>(3 * v) += w * x[v];
     q.c += w * x[v].squaredNorm();
   }

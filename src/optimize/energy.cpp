@@ -24,7 +24,6 @@ Eigen::VectorXd stacked_positions(const Domain& domain) {
 
 DomainEnergy domain_energy(const Domain& domain, const OptimizerOptions& options) {
   using namespace optimize_detail;
-  const std::size_t n = domain.num_vertices();
   DomainEnergy energy;
   energy.diameter = triangulation_diameter(domain);
   energy.fixed = boundary_vertices(domain, options.boundary_band * energy.diameter);
@@ -35,8 +34,7 @@ DomainEnergy domain_energy(const Domain& domain, const OptimizerOptions& options
     energy.crossing_tets += negative > 0 && negative < 4;
   }
 
-  QuadraticAccumulator q;
-  q.b = Eigen::VectorXd::Zero(3 * n);
+  QuadraticAccumulator q(domain);
   // Lengths are measured in units of r(T), so that E is dimensionless and
   // the minimizer invariant to rigid motion and uniform scaling: w_a =
   // vol(t) / r^3 and w_m = area(a_t) / r^2 as in §3.3, E_a, E_m and E_d
@@ -52,19 +50,7 @@ DomainEnergy domain_energy(const Domain& domain, const OptimizerOptions& options
       add_damping_term(domain, energy.fixed, options.damping_weight / (r * r), q);
   }
 
-  // A = (isotropic part) (x) I_3 + coupled part. The isotropic part is
-  // summed on |V| x |V| first: a third of the entries to sort.
-  Eigen::SparseMatrix<double> isotropic(n, n);
-  isotropic.setFromTriplets(q.isotropic.begin(), q.isotropic.end());
-  std::vector<Triplet>().swap(q.isotropic);
-  std::vector<Triplet> triplets;
-  triplets.reserve(3 * isotropic.nonZeros() + q.coupled.size());
-  for (Eigen::Index j = 0; j < isotropic.outerSize(); ++j)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(isotropic, j); it; ++it)
-      for (int k = 0; k < 3; ++k) triplets.emplace_back(3 * it.row() + k, 3 * j + k, it.value());
-  triplets.insert(triplets.end(), q.coupled.begin(), q.coupled.end());
-  energy.A.resize(3 * n, 3 * n);
-  energy.A.setFromTriplets(triplets.begin(), triplets.end());
+  energy.A = q.matrix();
   energy.b = std::move(q.b);
   energy.c = q.c;
   return energy;

@@ -21,12 +21,10 @@ void add_mid_edge_term(const Domain& domain, double weight_scale, QuadraticAccum
       // ((v_e1 + v_e2) / 2 - p_e) . n = g^T x - s with g = n/2 on both ends.
       const int e[2] = {a.edges[k][0], a.edges[k][1]};
       const double s = n.dot(a.corners[k]);
+      const Eigen::Matrix3d nn = (w * 0.25) * n * n.transpose();
       for (int u = 0; u < 2; ++u) {
         q.b.segment<3>(3 * e[u]) += w * 0.5 * s * n;
-        for (int v = 0; v < 2; ++v)
-          for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-              q.coupled.emplace_back(3 * e[u] + i, 3 * e[v] + j, w * 0.25 * n[i] * n[j]);
+        for (int v = 0; v < 2; ++v) q.add_coupled(e[u], e[v], nn);
       }
       q.c += w * s * s;
     }

@@ -18,8 +18,6 @@
 namespace pdd {
 namespace {
 
-using optimize_detail::Triplet;
-
 void check(const OptimizerOptions& o) {
   auto fail = [](const std::string& what, double value) {
     throw InputError("optimizer: " + what + ", got " + std::to_string(value));
@@ -46,21 +44,24 @@ Eigen::VectorXd minimize(const DomainEnergy& energy, const Eigen::VectorXd& x0,
     if (!energy.fixed[v]) free_index[v] = free++;
   if (free == 0) return x0;
 
-  // A_ff delta = -(A x0 - b)_f: the fixed vertices do not move.
+  // A_ff delta = -(A x0 - b)_f: the fixed vertices do not move. A_ff keeps
+  // the rows and columns of the free vertices, in order.
   const Eigen::VectorXd residual = energy.b - energy.A * x0;
   Eigen::VectorXd rhs(3 * free);
-  std::vector<Triplet> triplets;
+  Eigen::SparseMatrix<double> A_ff(3 * free, 3 * free);
+  A_ff.reserve(energy.A.nonZeros());
   for (Eigen::Index j = 0; j < energy.A.outerSize(); ++j) {
     const int fj = free_index[j / 3];
     if (fj < 0) continue;
-    rhs[3 * fj + j % 3] = residual[j];
+    const Eigen::Index column = 3 * fj + j % 3;
+    rhs[column] = residual[j];
+    A_ff.startVec(column);
     for (Eigen::SparseMatrix<double>::InnerIterator it(energy.A, j); it; ++it) {
       const int fi = free_index[it.row() / 3];
-      if (fi >= 0) triplets.emplace_back(3 * fi + it.row() % 3, 3 * fj + j % 3, it.value());
+      if (fi >= 0) A_ff.insertBack(3 * fi + it.row() % 3, column) = it.value();
     }
   }
-  Eigen::SparseMatrix<double> A_ff(3 * free, 3 * free);
-  A_ff.setFromTriplets(triplets.begin(), triplets.end());
+  A_ff.finalize();
 
   Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
                            optimize_detail::BlockJacobiPreconditioner>
@@ -110,7 +111,8 @@ std::vector<char> stray_vertices(const Domain& domain, const std::vector<Vec3>& 
         stray[v] = 1;
   });
   for (std::size_t v = 0; v < n; ++v)  // serial: point location is not thread-safe
-    if (moving[v] && !stray[v] && domain.locate(positions[v]).tet < 0) stray[v] = 1;
+    if (moving[v] && !stray[v] && domain.locate(positions[v], static_cast<int>(v)).tet < 0)
+      stray[v] = 1;
   return stray;
 }
 

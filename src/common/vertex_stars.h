@@ -1,0 +1,54 @@
+// The tets around each vertex of a tet mesh, and its closed one-rings.
+// Private to src/ (the FEM assembly and the optimizer's quadratic).
+#pragma once
+
+#include <pdd/types.h>
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+#include <vector>
+
+namespace pdd::detail {
+
+// Vertex -> incident tets, in increasing tet order (compressed rows).
+struct VertexStars {
+  std::vector<int> offsets;  // |V| + 1
+  std::vector<int> tets;
+  int begin(int v) const { return offsets[v]; }
+  int end(int v) const { return offsets[v + 1]; }
+};
+
+inline VertexStars vertex_stars(const TetMesh& mesh) {
+  VertexStars s;
+  const int n = static_cast<int>(mesh.vertices.size());
+  s.offsets.assign(n + 1, 0);
+  for (const auto& tet : mesh.tets)
+    for (int v : tet) {
+      if (v < 0 || v >= n) throw std::invalid_argument("tet mesh: a tet refers to a missing vertex");
+      ++s.offsets[v + 1];
+    }
+  for (int v = 0; v < n; ++v) s.offsets[v + 1] += s.offsets[v];
+  s.tets.resize(s.offsets[n]);
+  std::vector<int> fill(s.offsets.begin(), s.offsets.end() - 1);
+  for (int t = 0; t < static_cast<int>(mesh.tets.size()); ++t)
+    for (int v : mesh.tets[t]) s.tets[fill[v]++] = t;
+  return s;
+}
+
+inline int local_index(const std::array<int, 4>& tet, int v) {
+  for (int i = 0; i < 4; ++i)
+    if (tet[i] == v) return i;
+  return -1;
+}
+
+// Sorted vertices of the closed star of v (v and its neighbours).
+inline void one_ring(const TetMesh& mesh, const VertexStars& stars, int v, std::vector<int>& ring) {
+  ring.clear();
+  for (int k = stars.begin(v); k < stars.end(v); ++k)
+    for (int w : mesh.tets[stars.tets[k]]) ring.push_back(w);
+  std::sort(ring.begin(), ring.end());
+  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+}
+
+}  // namespace pdd::detail
