@@ -107,6 +107,8 @@ class Domain {
   // triangulation and carries f over by barycentric interpolation in the old
   // one (§3.3, "Linear Solver"). Vertices keep their indices.
   void move_vertices(const std::vector<Vec3>& new_positions);
+  // The same on a new domain, this one unchanged (no copy of it is made).
+  Domain moved(const std::vector<Vec3>& new_positions) const;
 
  private:
   struct Impl;

@@ -111,29 +111,36 @@ std::vector<int> Domain::insert(const std::vector<Vec3>& points, std::uint8_t fl
   return added;
 }
 
-void Domain::move_vertices(const std::vector<Vec3>& new_positions) {
-  Impl& d = *impl_;
+Domain Domain::moved(const std::vector<Vec3>& new_positions) const {
+  const Impl& d = *impl_;
   const std::size_t n = num_vertices();
   if (new_positions.size() != n)
     throw std::invalid_argument("Domain::move_vertices: one position per vertex is required");
+  Domain out;
+  Impl& o = *out.impl_;
   // f at the new positions, interpolated in the old triangulation; a vertex
   // that left the old domain keeps its value.
-  std::vector<double> f(n);
+  o.f.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const auto c = d.finite_cell_containing(new_positions[i], d.handles[i]->cell());
-    f[i] = c == Delaunay::Cell_handle() ? d.f[i] : d.interpolate_in(c, new_positions[i], d.f);
+    o.f[i] = c == Delaunay::Cell_handle() ? d.f[i] : d.interpolate_in(c, new_positions[i], d.f);
   }
-  Delaunay rebuilt;
   std::vector<std::pair<detail::Point, int>> items;
   items.reserve(n);
   for (std::size_t i = 0; i < n; ++i)
     items.emplace_back(to_point(new_positions[i]), static_cast<int>(i));
-  rebuilt.insert(items.begin(), items.end());
-  if (rebuilt.number_of_vertices() != n)
+  o.dt.insert(items.begin(), items.end());
+  if (o.dt.number_of_vertices() != n)
     throw std::invalid_argument("Domain::move_vertices: two vertices would coincide");
-  d.dt.swap(rebuilt);
-  d.f = std::move(f);
-  d.reindex();
+  o.flags = d.flags;
+  o.center = d.center;
+  o.radius = d.radius;
+  o.reindex();
+  return out;
+}
+
+void Domain::move_vertices(const std::vector<Vec3>& new_positions) {
+  *this = moved(new_positions);
 }
 
 double radius_edge_ratio(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {

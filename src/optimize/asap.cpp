@@ -81,14 +81,23 @@ void add_asap_term(const Domain& domain, double weight_scale, QuadraticAccumulat
   // per coordinate, x^T P x - 2 q^T x + |q|^2 with P = I_4 - 1/4 (the
   // centering, P q = q since the targets are centered). Zero-volume tets
   // have zero weight.
-  for (std::size_t t = 0; t < m; ++t) {
-    const double w = weight_scale * std::abs(volume[t]);
-    for (int i = 0; i < 4; ++i) {
-      for (int j = 0; j < 4; ++j) q.add_isotropic(tets[t][i], tets[t][j], w * ((i == j) - 0.25));
-      q.b.segment<3>(3 * tets[t][i]) += w * targets[t][i];
-      q.c += w * targets[t][i].squaredNorm();
+  const detail::VertexStars& stars = q.stars();
+  q.add_isotropic_by_columns([&](int j, auto add) {
+    for (int s = stars.begin(j); s < stars.end(j); ++s) {
+      const int t = stars.tets[s];
+      const int jl = detail::local_index(tets[t], j);
+      const double w = weight_scale * std::abs(volume[t]);
+      for (int i = 0; i < 4; ++i) add(tets[t][i], w * ((i == jl) - 0.25));
     }
-  }
+  });
+  tbb::parallel_for(0, static_cast<int>(x.size()), [&](int j) {
+    for (int s = stars.begin(j); s < stars.end(j); ++s) {
+      const int t = stars.tets[s];
+      q.b.segment<3>(3 * j) += weight_scale * std::abs(volume[t]) * targets[t][detail::local_index(tets[t], j)];
+    }
+  });
+  for (std::size_t t = 0; t < m; ++t)
+    for (int i = 0; i < 4; ++i) q.c += weight_scale * std::abs(volume[t]) * targets[t][i].squaredNorm();
 }
 
 }  // namespace pdd::optimize_detail

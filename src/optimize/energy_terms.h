@@ -4,6 +4,11 @@
 
 #include <pdd/domain.h>
 
+#include "common/vertex_stars.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
@@ -26,6 +31,21 @@ class QuadraticAccumulator {
   void add_isotropic(int i, int j, double a) { isotropic_[block(i, j)] += a; }
   void add_coupled(int i, int j, const Eigen::Matrix3d& m);
 
+  // For every vertex j, in parallel: column(j, add) calls add(i, a) to add
+  // a I_3 to block (i, j). One task sums each column, in the order `column`
+  // gives, so the result does not depend on the scheduling.
+  template <class Column>
+  void add_isotropic_by_columns(Column column) {
+    const int n = static_cast<int>(offsets_.size()) - 1;
+    tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
+      for (int j = r.begin(); j < r.end(); ++j)
+        column(j, [&](int i, double a) { isotropic_[block(i, j)] += a; });
+    });
+  }
+
+  // The tets around each vertex, in increasing order.
+  const detail::VertexStars& stars() const { return stars_; }
+
   // A, with the entries that the terms left zero off the block diagonals
   // of the isotropic blocks not stored.
   Eigen::SparseMatrix<double> matrix() const;
@@ -36,6 +56,7 @@ class QuadraticAccumulator {
  private:
   int block(int i, int j) const;  // index of block (i, j) in column j's blocks
 
+  detail::VertexStars stars_;
   std::vector<int> offsets_;  // |V| + 1: column j's blocks are offsets_[j] ... offsets_[j + 1) - 1
   std::vector<int> rows_;     // the row vertex of each block, sorted within a column
   std::vector<double> isotropic_;

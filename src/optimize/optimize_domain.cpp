@@ -197,8 +197,7 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
       break;
     }
     if (std::find(moving.begin(), moving.end(), 1) == moving.end()) break;
-    Domain moved = domain;
-    moved.move_vertices(positions);
+    Domain moved = domain.moved(positions);
     if (send_back(collapsed_vertices(moved, moving))) continue;
     for (Eigen::Index v = 0; v < n; ++v)
       report.max_displacement =

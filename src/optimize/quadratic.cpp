@@ -1,9 +1,5 @@
 // The block accumulator of E(T)'s quadratic (energy_terms.h).
-#include "common/vertex_stars.h"
 #include "optimize/energy_terms.h"
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 
@@ -12,10 +8,10 @@ namespace pdd::optimize_detail {
 QuadraticAccumulator::QuadraticAccumulator(const Domain& domain) {
   const TetMesh mesh = domain.mesh();
   const int n = static_cast<int>(mesh.vertices.size());
-  const detail::VertexStars stars = detail::vertex_stars(mesh);
+  stars_ = detail::vertex_stars(mesh);
   std::vector<std::vector<int>> rings(n);
   tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
-    for (int v = r.begin(); v < r.end(); ++v) detail::one_ring(mesh, stars, v, rings[v]);
+    for (int v = r.begin(); v < r.end(); ++v) detail::one_ring(mesh, stars_, v, rings[v]);
   });
   offsets_.assign(n + 1, 0);
   for (int v = 0; v < n; ++v) offsets_[v + 1] = offsets_[v] + static_cast<int>(rings[v].size());
