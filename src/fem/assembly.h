@@ -60,17 +60,14 @@ inline TetGradients tet_gradients(const TetMesh& mesh, int t) {
 template <int Blocks, bool Interleaved = false, class ColumnFn>
 SparseMatrix assemble_by_columns(const TetMesh& mesh, const VertexStars& stars, ColumnFn column) {
   const int n = static_cast<int>(mesh.vertices.size());
-  std::vector<int> ring_size(n);
+  std::vector<std::vector<int>> rings(n);
   tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
-    std::vector<int> ring;
-    for (int j = r.begin(); j < r.end(); ++j) {
-      one_ring(mesh, stars, j, ring);
-      ring_size[j] = static_cast<int>(ring.size());
-    }
+    for (int j = r.begin(); j < r.end(); ++j) one_ring(mesh, stars, j, rings[j]);
   });
   SparseMatrix A(static_cast<Eigen::Index>(Blocks) * n, n);
   std::vector<long long> start(n + 1, 0);
-  for (int j = 0; j < n; ++j) start[j + 1] = start[j] + static_cast<long long>(Blocks) * ring_size[j];
+  for (int j = 0; j < n; ++j)
+    start[j + 1] = start[j] + static_cast<long long>(Blocks) * static_cast<long long>(rings[j].size());
   if (start[n] > std::numeric_limits<int>::max())
     throw std::length_error("fem: matrix has more non-zeros than an int index can hold");
   A.resizeNonZeros(static_cast<Eigen::Index>(start[n]));
@@ -79,10 +76,9 @@ SparseMatrix assemble_by_columns(const TetMesh& mesh, const VertexStars& stars, 
   double* values = A.valuePtr();
   for (int j = 0; j <= n; ++j) outer[j] = static_cast<int>(start[j]);
   tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
-    std::vector<int> ring;
     double local[4 * Blocks];
     for (int j = r.begin(); j < r.end(); ++j) {
-      one_ring(mesh, stars, j, ring);
+      const std::vector<int>& ring = rings[j];
       const int m = static_cast<int>(ring.size());
       int* rows = inner + start[j];
       double* vals = values + start[j];
