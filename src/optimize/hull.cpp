@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pdd {
 namespace optimize_detail {
@@ -68,10 +69,23 @@ std::vector<bool> boundary_vertices(const Domain& domain, double band) {
     triangles.emplace_back(to_point(x[f[0]]), to_point(x[f[1]]), to_point(x[f[2]]));
   Tree tree(triangles.begin(), triangles.end());
   tree.accelerate_distance_queries();
+  // The hull, convex, holds the ball about an inner point c whose radius is
+  // the distance from c to the nearest face plane: a vertex deeper than
+  // `band` inside that ball needs no query (nearly all of them).
+  const Vec3 c = domain.center();
+  double inner = 0;
+  if (domain.locate(c).tet >= 0) {
+    inner = std::numeric_limits<double>::infinity();
+    for (const auto& f : faces) {
+      const Vec3 normal = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]);
+      inner = std::min(inner, std::abs(normal.dot(c - x[f[0]])) / normal.norm());
+    }
+  }
   std::vector<char> near(n, 0);  // written concurrently: no std::vector<bool>
   const double band2 = band * band;
   tbb::parallel_for(std::size_t(0), n, [&](std::size_t v) {
-    if (!fixed[v]) near[v] = tree.squared_distance(to_point(x[v])) < band2;
+    if (!fixed[v] && (x[v] - c).norm() > inner - band)
+      near[v] = tree.squared_distance(to_point(x[v])) < band2;
   });
   for (std::size_t v = 0; v < n; ++v)
     if (near[v]) fixed[v] = true;
