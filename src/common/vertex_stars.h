@@ -25,7 +25,8 @@ inline VertexStars vertex_stars(const TetMesh& mesh) {
   s.offsets.assign(n + 1, 0);
   for (const auto& tet : mesh.tets)
     for (int v : tet) {
-      if (v < 0 || v >= n) throw std::invalid_argument("tet mesh: a tet refers to a missing vertex");
+      if (v < 0 || v >= n)
+        throw std::invalid_argument("tet mesh: a tet refers to a missing vertex");
       ++s.offsets[v + 1];
     }
   for (int v = 0; v < n; ++v) s.offsets[v + 1] += s.offsets[v];

@@ -67,7 +67,8 @@ SparseMatrix assemble_by_columns(const TetMesh& mesh, const VertexStars& stars, 
   SparseMatrix A(static_cast<Eigen::Index>(Blocks) * n, n);
   std::vector<long long> start(n + 1, 0);
   for (int j = 0; j < n; ++j)
-    start[j + 1] = start[j] + static_cast<long long>(Blocks) * static_cast<long long>(rings[j].size());
+    start[j + 1] = start[j] +
+                   static_cast<long long>(Blocks) * static_cast<long long>(rings[j].size());
   if (start[n] > std::numeric_limits<int>::max())
     throw std::length_error("fem: matrix has more non-zeros than an int index can hold");
   A.resizeNonZeros(static_cast<Eigen::Index>(start[n]));

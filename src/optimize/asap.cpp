@@ -93,11 +93,13 @@ void add_asap_term(const Domain& domain, double weight_scale, QuadraticAccumulat
   tbb::parallel_for(0, static_cast<int>(x.size()), [&](int j) {
     for (int s = stars.begin(j); s < stars.end(j); ++s) {
       const int t = stars.tets[s];
-      q.b.segment<3>(3 * j) += weight_scale * std::abs(volume[t]) * targets[t][detail::local_index(tets[t], j)];
+      const Vec3& target = targets[t][detail::local_index(tets[t], j)];
+      q.b.segment<3>(3 * j) += weight_scale * std::abs(volume[t]) * target;
     }
   });
   for (std::size_t t = 0; t < m; ++t)
-    for (int i = 0; i < 4; ++i) q.c += weight_scale * std::abs(volume[t]) * targets[t][i].squaredNorm();
+    for (int i = 0; i < 4; ++i)
+      q.c += weight_scale * std::abs(volume[t]) * targets[t][i].squaredNorm();
 }
 
 }  // namespace pdd::optimize_detail

@@ -16,7 +16,8 @@ QuadraticAccumulator::QuadraticAccumulator(const Domain& domain) {
   offsets_.assign(n + 1, 0);
   for (int v = 0; v < n; ++v) offsets_[v + 1] = offsets_[v] + static_cast<int>(rings[v].size());
   rows_.resize(offsets_[n]);
-  for (int v = 0; v < n; ++v) std::copy(rings[v].begin(), rings[v].end(), rows_.begin() + offsets_[v]);
+  for (int v = 0; v < n; ++v)
+    std::copy(rings[v].begin(), rings[v].end(), rows_.begin() + offsets_[v]);
   isotropic_.assign(rows_.size(), 0.0);
   coupled_index_.assign(rows_.size(), -1);
   b = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(n));
@@ -45,7 +46,8 @@ Eigen::SparseMatrix<double> QuadraticAccumulator::matrix() const {
   // full part, row 3 i + k only otherwise.
   std::vector<int> column_size(n, 0);
   for (int j = 0; j < n; ++j)
-    for (int s = offsets_[j]; s < offsets_[j + 1]; ++s) column_size[j] += coupled_index_[s] < 0 ? 1 : 3;
+    for (int s = offsets_[j]; s < offsets_[j + 1]; ++s)
+      column_size[j] += coupled_index_[s] < 0 ? 1 : 3;
   Eigen::SparseMatrix<double> A(3 * n, 3 * n);
   int* outer = A.outerIndexPtr();
   outer[0] = 0;
