@@ -237,6 +237,7 @@ class Run {
   // The final solve on the final domain, and its isosurface.
   Result finish(Domain domain, bool optimize_first = false) {
     const int last = result_.iterations.empty() ? 1 : result_.iterations.back().iteration + 1;
+    loop_solver_.reset();  // its state is not needed any more: memory for the final solve
     IterationStats optimized;
     if (optimize_first) optimize(domain, last, optimized);
     result_.iterations.push_back(solve(domain, last, *solver_));

@@ -19,11 +19,20 @@ using CgIncompleteCholesky =
 using CgJacobi = Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper,
                                           Eigen::DiagonalPreconditioner<double>>;
 
-bool same_pattern(const SparseMatrix& a, const SparseMatrix& b) {
-  if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros()) return false;
-  return std::equal(a.outerIndexPtr(), a.outerIndexPtr() + a.cols() + 1, b.outerIndexPtr()) &&
-         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), b.innerIndexPtr());
-}
+// The sparsity pattern of a compressed matrix, to tell whether the next
+// one can reuse CHOLMOD's symbolic analysis.
+struct Pattern {
+  std::vector<int> outer, inner;
+  explicit Pattern(const SparseMatrix& a = SparseMatrix())
+      : outer(a.outerIndexPtr(), a.outerIndexPtr() + a.outerSize() + 1),
+        inner(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros()) {}
+  bool matches(const SparseMatrix& a) const {
+    return static_cast<Eigen::Index>(outer.size()) == a.outerSize() + 1 &&
+           static_cast<Eigen::Index>(inner.size()) == a.nonZeros() &&
+           std::equal(outer.begin(), outer.end(), a.outerIndexPtr()) &&
+           std::equal(inner.begin(), inner.end(), a.innerIndexPtr());
+  }
+};
 
 [[noreturn]] void fail(const std::string& what, double residual) {
   std::ostringstream msg;
@@ -59,7 +68,8 @@ int run_cg(Cg& cg, const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::Vecto
 
 struct LinearSolver::Impl {
   LinearSolverOptions options;
-  SparseMatrix A;
+  const SparseMatrix* A = nullptr;  // the caller's, see compute()
+  Pattern analyzed_pattern;         // CHOLMOD: the pattern of the analysis
   Cholmod cholmod;
   CgJacobi cg_jacobi;
   CgIncompleteCholesky cg_ic;
@@ -99,22 +109,25 @@ void LinearSolver::compute(const SparseMatrix& A) {
   Impl& d = *impl_;
   reused_analysis_ = false;
   if (route_.method == LinearMethod::kCholmod) {
-    reused_analysis_ = d.analyzed && same_pattern(d.A, A);
-    d.A = A;
-    if (!reused_analysis_) d.cholmod.analyzePattern(d.A);
+    reused_analysis_ = d.analyzed && d.analyzed_pattern.matches(A);
+    d.A = &A;
+    if (!reused_analysis_) {
+      d.cholmod.analyzePattern(A);
+      d.analyzed_pattern = Pattern(A);
+    }
     d.analyzed = true;
-    d.cholmod.factorize(d.A);
+    d.cholmod.factorize(A);
     if (d.cholmod.info() != Eigen::Success) {
       d.analyzed = false;
       throw SolverError("CHOLMOD: the system matrix is not positive definite (" +
                         std::to_string(A.rows()) + " unknowns)");
     }
   } else {
-    d.A = A;
+    d.A = &A;
     if (route_.preconditioner == Preconditioner::kJacobi) {
-      d.cg_jacobi.compute(d.A);
+      d.cg_jacobi.compute(A);
     } else {
-      d.cg_ic.compute(d.A);
+      d.cg_ic.compute(A);
       if (d.cg_ic.info() != Eigen::Success)
         throw SolverError("incomplete Cholesky preconditioner failed (" +
                           std::to_string(A.rows()) + " unknowns)");
@@ -137,13 +150,13 @@ void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     x = d.cholmod.solve(b);
     iterations_ = 0;
   } else if (route_.preconditioner == Preconditioner::kJacobi) {
-    iterations_ = run_cg(d.cg_jacobi, d.A, b, x);
+    iterations_ = run_cg(d.cg_jacobi, *d.A, b, x);
     converged = d.cg_jacobi.info() == Eigen::Success;
   } else {
-    iterations_ = run_cg(d.cg_ic, d.A, b, x);
+    iterations_ = run_cg(d.cg_ic, *d.A, b, x);
     converged = d.cg_ic.info() == Eigen::Success;
   }
-  residual_ = (d.A * x - b).norm() / b_norm;
+  residual_ = (*d.A * x - b).norm() / b_norm;
   if (!x.allFinite()) fail("linear solve produced non-finite values", residual_);
   if (!converged)
     fail("conjugate gradients did not converge in " + std::to_string(iterations_) + " iterations",

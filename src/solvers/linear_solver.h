@@ -29,7 +29,8 @@ class LinearSolver {
   // Prepares solves with the SPD matrix A (all entries stored; CHOLMOD reads
   // the lower triangle): CHOLMOD factorizes, reusing the symbolic analysis
   // of the previous matrix when the sparsity pattern is the same; CG builds
-  // its preconditioner. A is copied. Throws SolverError when the
+  // its preconditioner. A is not copied: it must stay alive and unchanged
+  // until the last solve() with it. Throws SolverError when the
   // factorization fails (A not positive definite numerically).
   void compute(const SparseMatrix& A);
 
