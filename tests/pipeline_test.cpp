@@ -152,6 +152,19 @@ TEST(Pipeline, SameSeedGivesIdenticalOutput) {
   EXPECT_EQ(a.mesh.faces, b.mesh.faces);
 }
 
+TEST(Pipeline, OneThreadGivesTheSameOutputAsAll) {
+  // Every parallel sum (TBB assembly, Eigen's OpenMP products in the loop's
+  // CG, here on every domain) runs in an order fixed by the mesh.
+  const PointSet input = test::sample_ellipsoid(1200, Vec3(1.0, 0.7, 0.5));
+  ReconstructOptions o = fast_options(SolverKind::kSsd, 0.12);
+  o.loop_solve.min_vertices = 0;
+  const Result all = reconstruct(input, o);
+  o.threads = 1;
+  const Result one = reconstruct(input, o);
+  EXPECT_EQ(all.mesh.vertices, one.mesh.vertices);
+  EXPECT_EQ(all.mesh.faces, one.mesh.faces);
+}
+
 TEST(Pipeline, OtherDomainStrategiesReconstructTheSphere) {
   const PointSet input = test::sample_sphere(1000);
   for (DomainStrategy s :

@@ -7,6 +7,7 @@
 
 #include "pipeline/octree_domain.h"
 
+#include <Eigen/Core>
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -29,6 +30,21 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
+
+// Eigen's thread count (its OpenMP sparse products) for the scope of a run:
+// n if n > 0, then back to what it was.
+class EigenThreads {
+ public:
+  explicit EigenThreads(int n) : saved_(Eigen::nbThreads()) {
+    if (n > 0) Eigen::setNbThreads(n);
+  }
+  ~EigenThreads() { Eigen::setNbThreads(saved_); }
+  EigenThreads(const EigenThreads&) = delete;
+  EigenThreads& operator=(const EigenThreads&) = delete;
+
+ private:
+  int saved_;
+};
 
 // Thrown by Run::report when the callback asks to stop; caught in reconstruct().
 struct Cancelled {};
@@ -302,6 +318,7 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
   if (options.threads > 0)
     threads.emplace(tbb::global_control::max_allowed_parallelism,
                     static_cast<std::size_t>(options.threads));
+  const EigenThreads eigen_threads(options.threads);
   Run run(points, options);
   try {
     switch (options.strategy) {
