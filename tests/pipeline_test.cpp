@@ -183,8 +183,8 @@ TEST(Pipeline, OtherDomainStrategiesReconstructTheSphere) {
 TEST(Pipeline, LoopSolvesAreLooseAndTheFinalSolveExact) {
   // LoopSolveOptions on every domain (min_vertices = 0): the solves after the
   // first and before the final one stop at the loose tolerance, warm-started
-  // by CG; the final solve is a direct one; the surface matches the run whose
-  // loop solves are all exact.
+  // by CG; the first and the final one are direct; the surface matches the
+  // run whose loop solves are all exact.
   const PointSet input = test::sample_sphere(1500);
   ReconstructOptions o = fast_options(SolverKind::kSsd, 0.12);
   o.loop_solve.min_vertices = 0;

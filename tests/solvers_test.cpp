@@ -260,6 +260,7 @@ TEST_P(OrientedSolver, ConjugateGradientsAgreeWithCholmodAndUseTheWarmStart) {
   direct.linear.method = LinearMethod::kCholmod;
   SolverOptions iterative = options_for(GetParam());
   iterative.linear.method = LinearMethod::kConjugateGradient;
+  iterative.linear.cg_fallback_iterations = 0;  // CG also without a warm start
   const std::vector<double> f = make_solver(direct)->solve(domain, samples);
   auto cg = make_solver(iterative);
   const std::vector<double> g = cg->solve(domain, samples);
@@ -352,6 +353,39 @@ TEST(SolverStats, CholmodKeepsItsAnalysisWhileThePatternStays) {
   EXPECT_GT(solver->stats().nonzeros, domain.num_vertices());
   solver->solve(domain, samples);
   EXPECT_TRUE(solver->stats().reused_analysis);
+}
+
+TEST(SolverStats, SsdCgRouteIsCgFromAWarmStartAndCholmodOtherwise) {
+  const PointSet samples = test::sample_sphere(800);
+  const Domain domain = shell_domain(samples, sphere_distance(), 0.15);
+  SolverOptions o = options_for(SolverKind::kSsd);
+  o.linear.method = LinearMethod::kConjugateGradient;
+  o.linear.preconditioner = Preconditioner::kJacobi;
+  auto solver = make_solver(o);
+  const std::vector<double> exact = solver->solve(domain, samples);
+  EXPECT_EQ(solver->stats().method, "cholmod");  // no warm start
+
+  std::vector<double> warm = exact;
+  for (std::size_t v = 0; v < warm.size(); ++v) warm[v] += 1e-3 * std::sin(7.0 * v);
+  const std::vector<double> from_warm = solver->solve(domain, samples, &warm);
+  EXPECT_EQ(solver->stats().method, "cg+jacobi");
+  EXPECT_GT(solver->stats().iterations, 0);
+  EXPECT_LE(solver->stats().residual, 1e-9);
+
+  // CG stopped after 2 iterations: CHOLMOD finishes the solve.
+  o.linear.cg_fallback_iterations = 2;
+  auto impatient = make_solver(o);
+  const std::vector<double> fallen_back = impatient->solve(domain, samples, &warm);
+  EXPECT_EQ(impatient->stats().method, "cg+jacobi, then cholmod");
+  EXPECT_LT(impatient->stats().residual, 1e-9);
+  double largest = 0, gap_cg = 0, gap_fallback = 0;
+  for (std::size_t v = 0; v < exact.size(); ++v) {
+    largest = std::max(largest, std::abs(exact[v]));
+    gap_cg = std::max(gap_cg, std::abs(from_warm[v] - exact[v]));
+    gap_fallback = std::max(gap_fallback, std::abs(fallen_back[v] - exact[v]));
+  }
+  EXPECT_LT(gap_cg, 1e-6 * largest);
+  EXPECT_LT(gap_fallback, 1e-9 * largest);
 }
 
 TEST(SolverOptions, KindsParseAndBadWeightsAreInputErrors) {

@@ -74,6 +74,26 @@ struct LinearSolver::Impl {
   CgJacobi cg_jacobi;
   CgIncompleteCholesky cg_ic;
   bool analyzed = false;
+  bool factorized = false;  // CHOLMOD holds the factor of *A
+
+  // CHOLMOD's factor of *A, reusing the analysis while the pattern stays.
+  // Returns whether the analysis was reused.
+  bool factorize() {
+    const bool reuse = analyzed && analyzed_pattern.matches(*A);
+    if (!reuse) {
+      cholmod.analyzePattern(*A);
+      analyzed_pattern = Pattern(*A);
+    }
+    analyzed = true;
+    cholmod.factorize(*A);
+    if (cholmod.info() != Eigen::Success) {
+      analyzed = false;
+      throw SolverError("CHOLMOD: the system matrix is not positive definite (" +
+                        std::to_string(A->rows()) + " unknowns)");
+    }
+    factorized = true;
+    return reuse;
+  }
 };
 
 LinearSolver::LinearSolver(const LinearSolverOptions& options, const LinearRoute& route)
@@ -89,49 +109,34 @@ LinearSolver::LinearSolver(const LinearSolverOptions& options, const LinearRoute
   // 0.2 s per analysis spent for nothing (docs/benchmarks.md).
   common.nmethods = 1;
   common.method[0].ordering = CHOLMOD_METIS;
+  const int cg_iterations =
+      route.cholmod_after > 0 ? route.cholmod_after : options.cg_max_iterations;
   impl_->cg_jacobi.setTolerance(options.cg_tolerance);
-  impl_->cg_jacobi.setMaxIterations(options.cg_max_iterations);
+  impl_->cg_jacobi.setMaxIterations(cg_iterations);
   impl_->cg_ic.setTolerance(options.cg_tolerance);
-  impl_->cg_ic.setMaxIterations(options.cg_max_iterations);
+  impl_->cg_ic.setMaxIterations(cg_iterations);
 }
 
 LinearSolver::~LinearSolver() = default;
 LinearSolver::LinearSolver(LinearSolver&&) noexcept = default;
 LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
 
-std::string LinearSolver::method_name() const {
-  if (route_.method == LinearMethod::kCholmod) return "cholmod";
-  return route_.preconditioner == Preconditioner::kJacobi ? "cg+jacobi" : "cg+ic";
-}
-
 void LinearSolver::compute(const SparseMatrix& A) {
   const auto start = Clock::now();
   Impl& d = *impl_;
+  d.A = &A;
+  d.factorized = false;
   reused_analysis_ = false;
+  factorize_seconds_in_solves_ = 0;
   if (route_.method == LinearMethod::kCholmod) {
-    reused_analysis_ = d.analyzed && d.analyzed_pattern.matches(A);
-    d.A = &A;
-    if (!reused_analysis_) {
-      d.cholmod.analyzePattern(A);
-      d.analyzed_pattern = Pattern(A);
-    }
-    d.analyzed = true;
-    d.cholmod.factorize(A);
-    if (d.cholmod.info() != Eigen::Success) {
-      d.analyzed = false;
-      throw SolverError("CHOLMOD: the system matrix is not positive definite (" +
-                        std::to_string(A.rows()) + " unknowns)");
-    }
+    reused_analysis_ = d.factorize();
+  } else if (route_.preconditioner == Preconditioner::kJacobi) {
+    d.cg_jacobi.compute(A);
   } else {
-    d.A = &A;
-    if (route_.preconditioner == Preconditioner::kJacobi) {
-      d.cg_jacobi.compute(A);
-    } else {
-      d.cg_ic.compute(A);
-      if (d.cg_ic.info() != Eigen::Success)
-        throw SolverError("incomplete Cholesky preconditioner failed (" +
-                          std::to_string(A.rows()) + " unknowns)");
-    }
+    d.cg_ic.compute(A);
+    if (d.cg_ic.info() != Eigen::Success)
+      throw SolverError("incomplete Cholesky preconditioner failed (" + std::to_string(A.rows()) +
+                        " unknowns)");
   }
   factorize_seconds_ = seconds_since(start);
 }
@@ -139,30 +144,46 @@ void LinearSolver::compute(const SparseMatrix& A) {
 void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   Impl& d = *impl_;
   const double b_norm = b.norm();
+  iterations_ = 0;
   if (b_norm == 0) {
     x.setZero(b.size());
-    iterations_ = 0;
     residual_ = 0;
     return;
   }
-  bool converged = true;
-  if (route_.method == LinearMethod::kCholmod) {
+  const std::string cg_name = route_.preconditioner == Preconditioner::kJacobi ? "cg+jacobi" : "cg+ic";
+  const bool warm = x.size() == b.size() && x.allFinite() && x.squaredNorm() > 0;
+  bool direct = route_.method == LinearMethod::kCholmod || (route_.cholmod_after > 0 && !warm);
+  method_ = direct ? "cholmod" : cg_name;
+  if (!direct) {
+    bool converged;
+    if (route_.preconditioner == Preconditioner::kJacobi) {
+      iterations_ = run_cg(d.cg_jacobi, *d.A, b, x);
+      converged = d.cg_jacobi.info() == Eigen::Success;
+    } else {
+      iterations_ = run_cg(d.cg_ic, *d.A, b, x);
+      converged = d.cg_ic.info() == Eigen::Success;
+    }
+    if (!converged && route_.cholmod_after > 0) {
+      direct = true;
+      method_ = cg_name + ", then cholmod";
+    } else if (!converged) {
+      fail("conjugate gradients did not converge in " + std::to_string(iterations_) +
+               " iterations",
+           (*d.A * x - b).norm() / b_norm);
+    }
+  }
+  if (direct) {
+    if (!d.factorized) {
+      const auto start = Clock::now();
+      reused_analysis_ = d.factorize();
+      factorize_seconds_in_solves_ += seconds_since(start);
+      factorize_seconds_ += seconds_since(start);
+    }
     x = d.cholmod.solve(b);
-    iterations_ = 0;
-  } else if (route_.preconditioner == Preconditioner::kJacobi) {
-    iterations_ = run_cg(d.cg_jacobi, *d.A, b, x);
-    converged = d.cg_jacobi.info() == Eigen::Success;
-  } else {
-    iterations_ = run_cg(d.cg_ic, *d.A, b, x);
-    converged = d.cg_ic.info() == Eigen::Success;
   }
   residual_ = (*d.A * x - b).norm() / b_norm;
   if (!x.allFinite()) fail("linear solve produced non-finite values", residual_);
-  if (!converged)
-    fail("conjugate gradients did not converge in " + std::to_string(iterations_) + " iterations",
-         residual_);
-  if (route_.method == LinearMethod::kCholmod && residual_ > d.options.max_residual)
-    fail("CHOLMOD solve is inaccurate", residual_);
+  if (direct && residual_ > d.options.max_residual) fail("CHOLMOD solve is inaccurate", residual_);
 }
 
 }  // namespace pdd::detail

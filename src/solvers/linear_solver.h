@@ -17,6 +17,9 @@ namespace pdd::detail {
 struct LinearRoute {
   LinearMethod method = LinearMethod::kCholmod;               // kCholmod or kConjugateGradient
   Preconditioner preconditioner = Preconditioner::kJacobi;   // kJacobi or kIncompleteCholesky
+  // kConjugateGradient only, when > 0: CHOLMOD solves instead when there is
+  // no warm start, or once CG has run this many iterations without converging.
+  int cholmod_after = 0;
 };
 
 class LinearSolver {
@@ -34,16 +37,21 @@ class LinearSolver {
   // factorization fails (A not positive definite numerically).
   void compute(const SparseMatrix& A);
 
-  // Solves A x = b. On entry x is a warm start for CG (empty means none);
-  // CHOLMOD ignores it. Throws SolverError, naming the relative residual,
+  // Solves A x = b. On entry x is a warm start for CG (empty or zero means
+  // none); CHOLMOD ignores it. Throws SolverError, naming the relative residual,
   // when CG does not reach its tolerance, a direct solve's residual exceeds
   // options.max_residual or the result is not finite.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
 
-  std::string method_name() const;  // "cholmod", "cg+jacobi" or "cg+ic"
+  // Of the last solve: "cholmod", "cg+jacobi" or "cg+ic", or "cg+..., then
+  // cholmod" when CG gave up (LinearRoute::cholmod_after).
+  const std::string& method_name() const { return method_; }
   int iterations() const { return iterations_; }  // of the last solve (0 for CHOLMOD)
   double residual() const { return residual_; }   // |A x - b| / |b| of the last solve
-  double factorize_seconds() const { return factorize_seconds_; }  // of the last compute()
+  // Of the last compute() and of the factorization that solve() made for it
+  // (LinearRoute::cholmod_after), which alone factorize_seconds_in_solves() counts.
+  double factorize_seconds() const { return factorize_seconds_; }
+  double factorize_seconds_in_solves() const { return factorize_seconds_in_solves_; }
   bool reused_analysis() const { return reused_analysis_; }        // last compute() kept the analysis
 
   // Copies the above into stats (method, iterations, residual,
@@ -63,7 +71,9 @@ class LinearSolver {
   int iterations_ = 0;
   double residual_ = 0;
   double factorize_seconds_ = 0;
+  double factorize_seconds_in_solves_ = 0;
   bool reused_analysis_ = false;
+  std::string method_ = "none";
 };
 
 }  // namespace pdd::detail

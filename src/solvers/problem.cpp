@@ -65,12 +65,16 @@ LinearRoute resolve_route(const LinearSolverOptions& options, SolverKind kind) {
   // second-order Poisson system is solved fastest by CG with the Jacobi
   // preconditioner from 10k vertices up; the fourth-order SSD and spectral
   // systems (two-ring bi-Laplacian / Hessian terms) by CHOLMOD, CG needing
-  // hundreds (incomplete Cholesky) to thousands (Jacobi) of iterations.
+  // hundreds (incomplete Cholesky) to thousands (Jacobi) of iterations from
+  // scratch. From a warm start CG is competitive and lighter: the CG route of
+  // those two keeps CHOLMOD for the solves without one.
   LinearRoute route;
   route.method = options.method;
   if (route.method == LinearMethod::kAuto)
     route.method =
         kind == SolverKind::kPoisson ? LinearMethod::kConjugateGradient : LinearMethod::kCholmod;
+  else if (route.method == LinearMethod::kConjugateGradient && kind != SolverKind::kPoisson)
+    route.cholmod_after = options.cg_fallback_iterations;
   route.preconditioner = options.preconditioner;
   if (route.preconditioner == Preconditioner::kAuto)
     route.preconditioner =
