@@ -5,11 +5,13 @@
 # columns of /work/shared/data/README.md so that the rows compare with the peers
 # listed there.
 #
-#   bench/shared_data.sh [PDD] [--domain STRATEGY] [--only REGEX] [--data DIR] [--keep DIR]
+#   bench/shared_data.sh [PDD] [--domain STRATEGY] [--linear METHOD] [--only REGEX] [--data DIR] [--keep DIR]
 #
 #   PDD              the pdd binary (default: build/pdd)
 #   --domain S       passed to `pdd reconstruct --domain S` (e.g. octree for the
 #                    baseline); the table then goes to shared_data_S.md
+#   --linear M       passed to `pdd reconstruct --linear M` (e.g. cg); the table
+#                    then goes to shared_data_linear_M.md
 #   --only REGEX     only the inputs whose name (e.g. bunny_clean) matches
 #   --data DIR       the data folder (default: ../shared/data beside the repository)
 #   --keep DIR       keep the output meshes in DIR (default: a temporary folder,
@@ -24,6 +26,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 pdd="$root/build/pdd"
 domain=""
+linear=""
 only=""
 data="$root/../shared/data"
 keep=""
@@ -32,6 +35,7 @@ usage() { sed -n '/^#   bench\/shared_data.sh/,/removed at the end)/s/^# \{0,1\}
 while [ $# -gt 0 ]; do
   case "$1" in
     --domain) [ $# -ge 2 ] || usage; domain="$2"; shift 2 ;;
+    --linear) [ $# -ge 2 ] || usage; linear="$2"; shift 2 ;;
     --only) [ $# -ge 2 ] || usage; only="$2"; shift 2 ;;
     --data) [ $# -ge 2 ] || usage; data="$2"; shift 2 ;;
     --keep) [ $# -ge 2 ] || usage; keep="$2"; shift 2 ;;
@@ -47,7 +51,7 @@ done
 [ -x "$pdd" ] || { echo "shared_data.sh: $pdd is not an executable (build it, or pass its path)" >&2; exit 2; }
 pdd="$(cd "$(dirname "$pdd")" && pwd)/$(basename "$pdd")"
 
-name="shared_data${domain:+_$domain}"
+name="shared_data${domain:+_$domain}${linear:+_linear_$linear}"
 results="$root/bench/results"
 details="$results/$name"
 table="$results/$name.md"
@@ -85,6 +89,10 @@ fail() {
 sum_time=0
 max_peak=0
 runs=0
+# The same over the inputs of 20000 points or more (the issue's targets).
+sum_time_20k=0
+max_peak_20k=0
+runs_20k=0
 right=0
 with_truth=0
 
@@ -104,6 +112,7 @@ for input in "${inputs[@]}"; do
   args=(reconstruct "$input" -o "$mesh")
   [ $stats_flag = 1 ] && args+=(--stats "$details/$base.stats.json")
   [ -n "$domain" ] && args+=(--domain "$domain")
+  [ -n "$linear" ] && args+=(--linear "$linear")
   code=0
   /usr/bin/time -v -o "$timelog" "$pdd" "${args[@]}" 2>"$work/$base.stderr.txt" || code=$?
   if [ $code -ne 0 ]; then
@@ -118,6 +127,12 @@ for input in "${inputs[@]}"; do
   runs=$((runs + 1))
   sum_time="$(awk -v a="$sum_time" -v b="$seconds" 'BEGIN { print a + b }')"
   [ "$peak_mb" -gt "$max_peak" ] && max_peak="$peak_mb"
+  points="$(head -c 2000 "$input" | tr -d '\r' | sed -n 's/^element vertex //p' | head -1)"
+  if [ "${points:-0}" -ge 20000 ]; then
+    runs_20k=$((runs_20k + 1))
+    sum_time_20k="$(awk -v a="$sum_time_20k" -v b="$seconds" 'BEGIN { print a + b }')"
+    [ "$peak_mb" -gt "$max_peak_20k" ] && max_peak_20k="$peak_mb"
+  fi
 
   quality="$details/$base.quality.json"
   if ! "$pdd" quality "$mesh" --json >"$quality" 2>"$work/$base.stderr.txt"; then
@@ -156,7 +171,7 @@ for input in "${inputs[@]}"; do
 done
 
 {
-  echo "# pdd on the shared data: domain ${domain:-progressive} (default options)"
+  echo "# pdd on the shared data: domain ${domain:-progressive}, linear solves ${linear:-auto} (other options default)"
   echo
   echo "$(date -u '+%Y-%m-%d %H:%M UTC'); $("$pdd" --version 2>/dev/null || echo "pdd ?"), commit" \
     "$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo ?)$(git -C "$root" diff --quiet 2>/dev/null || echo "+local changes");" \
@@ -175,6 +190,10 @@ done
   if [ $runs -gt 0 ]; then
     echo "Mean time $(awk -v s="$sum_time" -v n="$runs" 'BEGIN { printf "%.2f", s / n }') s and largest peak memory" \
       "$max_peak MB over $runs runs; topology right on $right of $with_truth inputs with a ground truth."
+  fi
+  if [ $runs_20k -gt 0 ]; then
+    echo "Over the $runs_20k inputs of 20000 points or more: mean time" \
+      "$(awk -v s="$sum_time_20k" -v n="$runs_20k" 'BEGIN { printf "%.2f", s / n }') s, largest peak memory $max_peak_20k MB."
   fi
 } >"$table"
 cat "$table"
