@@ -89,7 +89,8 @@ fail() {
 sum_time=0
 max_peak=0
 runs=0
-# The same over the inputs of 20000 points or more (the issue's targets).
+# The same over the inputs drawn from 20k samples (all but the sparse ones and
+# the kitten scan; holes and vardens then lost some): the issue's targets.
 sum_time_20k=0
 max_peak_20k=0
 runs_20k=0
@@ -127,8 +128,7 @@ for input in "${inputs[@]}"; do
   runs=$((runs + 1))
   sum_time="$(awk -v a="$sum_time" -v b="$seconds" 'BEGIN { print a + b }')"
   [ "$peak_mb" -gt "$max_peak" ] && max_peak="$peak_mb"
-  points="$(head -c 2000 "$input" | tr -d '\r' | sed -n 's/^element vertex //p' | head -1)"
-  if [ "${points:-0}" -ge 20000 ]; then
+  if [[ "$base" != *_sparse && "$shape" != kitten ]]; then
     runs_20k=$((runs_20k + 1))
     sum_time_20k="$(awk -v a="$sum_time_20k" -v b="$seconds" 'BEGIN { print a + b }')"
     [ "$peak_mb" -gt "$max_peak_20k" ] && max_peak_20k="$peak_mb"
@@ -192,7 +192,7 @@ done
       "$max_peak MB over $runs runs; topology right on $right of $with_truth inputs with a ground truth."
   fi
   if [ $runs_20k -gt 0 ]; then
-    echo "Over the $runs_20k inputs of 20000 points or more: mean time" \
+    echo "Over the $runs_20k inputs drawn from 20k samples (all but sparse and the kitten): mean time" \
       "$(awk -v s="$sum_time_20k" -v n="$runs_20k" 'BEGIN { printf "%.2f", s / n }') s, largest peak memory $max_peak_20k MB."
   fi
 } >"$table"
