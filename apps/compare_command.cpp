@@ -12,6 +12,7 @@
 
 #include "commands.h"
 #include "json.h"
+#include "validators.h"
 
 namespace pdd::cli {
 namespace {
@@ -109,7 +110,7 @@ void add_compare_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--fscore-threshold", args->options.fscore_threshold,
                   "F-score threshold τ, as a fraction of B's bounding-box diagonal")
-      ->check(CLI::NonNegativeNumber)
+      ->check(at_least(0))
       ->capture_default_str();
   cmd->add_option("--seed", args->options.seed, "Seed of the sampling")->capture_default_str();
   cmd->callback([args] {

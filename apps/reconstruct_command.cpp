@@ -17,6 +17,7 @@
 #include <string>
 
 #include "commands.h"
+#include "validators.h"
 
 namespace pdd::cli {
 
@@ -121,21 +122,6 @@ void reconstruct(ReconstructArgs& args) {
             << result.mesh.vertices.size() << " vertices)\n";
 }
 
-// A validator accepting numbers strictly greater than `bound`.
-CLI::Validator greater_than(double bound) {
-  std::ostringstream text;
-  text << bound;
-  const std::string limit = text.str();
-  return CLI::Validator(
-      [bound, limit](std::string& value) -> std::string {
-        std::istringstream in(value);
-        double number = 0;
-        if (in >> number && in.eof() && number > bound) return "";
-        return "must be a number greater than " + limit;
-      },
-      "NUMBER>" + limit);
-}
-
 }  // namespace
 
 void add_reconstruct_command(CLI::App& app) {
@@ -148,15 +134,16 @@ void add_reconstruct_command(CLI::App& app) {
       ->check(CLI::IsMember({"ssd", "poisson", "spectral"}))
       ->capture_default_str();
   cmd->add_option("--linear", args->linear,
-                  "Linear solves: auto (CHOLMOD for SSD and spectral, CG for Poisson), cholmod, "
-                  "or cg (conjugate gradients from the previous solution, CHOLMOD where there is "
-                  "none: 35-40% less memory, a little slower)")
+                  "Linear solves: auto (SSD, spectral: CG from the previous solution, CHOLMOD "
+                  "where there is none; Poisson: CG), cholmod (always direct: about as fast, "
+                  "twice the memory) or cg (always conjugate gradients)")
       ->check(CLI::IsMember({"auto", "cholmod", "cg"}))
       ->capture_default_str();
   cmd->add_option("--loop-tolerance", args->options.loop_solve.tolerance,
-                  "Relative residual of the solves before the final one on large domains "
-                  "(CG from the previous solution; 0: solve them like the final one)")
-      ->check(CLI::NonNegativeNumber)
+                  "If > 0, the solves before the final one stop at this relative residual on "
+                  "domains of 10k vertices or more (faster on dense scans; can change the "
+                  "topology of sparse or partial ones)")
+      ->check(at_least(0))
       ->capture_default_str();
   cmd->add_option("--domain", args->strategy,
                   "How the domain is built (§4.2): progressive (ours), direct (refine without "
@@ -189,7 +176,7 @@ void add_reconstruct_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--max-vertices", args->options.max_vertices,
                   "Stop refining once the domain has this many vertices")
-      ->check(CLI::PositiveNumber)
+      ->check(greater_than(0))
       ->capture_default_str();
   cmd->add_option("--optimizer-rounds", args->options.optimizer_rounds,
                   "Optimizer passes per iteration (§3.3)")
@@ -234,15 +221,15 @@ void add_reconstruct_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--lambda-asap", args->options.optimizer.lambda_asap,
                   "Weight λa of the as-similar-as-possible term (§3.3, Eq. 1)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(at_least(0))
       ->capture_default_str();
   cmd->add_option("--lambda-mid-edge", args->options.optimizer.lambda_mid_edge,
                   "Weight λm of the mid-edge term (§3.3, Eq. 1)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(at_least(0))
       ->capture_default_str();
   cmd->add_option("--damping", args->options.optimizer.damping_weight,
                   "Weight of the damping term, times the domain's diameter r(T) (§3.3)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(at_least(0))
       ->capture_default_str();
   cmd->add_option("--seed", args->options.seed, "Seed of the probabilistic bisection (§3.4)")
       ->capture_default_str();

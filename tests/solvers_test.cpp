@@ -260,7 +260,6 @@ TEST_P(OrientedSolver, ConjugateGradientsAgreeWithCholmodAndUseTheWarmStart) {
   direct.linear.method = LinearMethod::kCholmod;
   SolverOptions iterative = options_for(GetParam());
   iterative.linear.method = LinearMethod::kConjugateGradient;
-  iterative.linear.cg_fallback_iterations = 0;  // CG also without a warm start
   const std::vector<double> f = make_solver(direct)->solve(domain, samples);
   auto cg = make_solver(iterative);
   const std::vector<double> g = cg->solve(domain, samples);
@@ -355,12 +354,11 @@ TEST(SolverStats, CholmodKeepsItsAnalysisWhileThePatternStays) {
   EXPECT_TRUE(solver->stats().reused_analysis);
 }
 
-TEST(SolverStats, SsdCgRouteIsCgFromAWarmStartAndCholmodOtherwise) {
+TEST(SolverStats, SsdAutoRouteIsCgFromAWarmStartAndCholmodOtherwise) {
   const PointSet samples = test::sample_sphere(800);
   const Domain domain = shell_domain(samples, sphere_distance(), 0.15);
   SolverOptions o = options_for(SolverKind::kSsd);
-  o.linear.method = LinearMethod::kConjugateGradient;
-  o.linear.preconditioner = Preconditioner::kJacobi;
+  ASSERT_EQ(o.linear.method, LinearMethod::kAuto);
   auto solver = make_solver(o);
   const std::vector<double> exact = solver->solve(domain, samples);
   EXPECT_EQ(solver->stats().method, "cholmod");  // no warm start
@@ -368,7 +366,7 @@ TEST(SolverStats, SsdCgRouteIsCgFromAWarmStartAndCholmodOtherwise) {
   std::vector<double> warm = exact;
   for (std::size_t v = 0; v < warm.size(); ++v) warm[v] += 1e-3 * std::sin(7.0 * v);
   const std::vector<double> from_warm = solver->solve(domain, samples, &warm);
-  EXPECT_EQ(solver->stats().method, "cg+jacobi");
+  EXPECT_EQ(solver->stats().method, "cg+ic");
   EXPECT_GT(solver->stats().iterations, 0);
   EXPECT_LE(solver->stats().residual, 1e-9);
 
@@ -376,7 +374,7 @@ TEST(SolverStats, SsdCgRouteIsCgFromAWarmStartAndCholmodOtherwise) {
   o.linear.cg_fallback_iterations = 2;
   auto impatient = make_solver(o);
   const std::vector<double> fallen_back = impatient->solve(domain, samples, &warm);
-  EXPECT_EQ(impatient->stats().method, "cg+jacobi, then cholmod");
+  EXPECT_EQ(impatient->stats().method, "cg+ic, then cholmod");
   EXPECT_LT(impatient->stats().residual, 1e-9);
   double largest = 0, gap_cg = 0, gap_fallback = 0;
   for (std::size_t v = 0; v < exact.size(); ++v) {

@@ -32,14 +32,13 @@ std::string to_string(SolverKind kind);
 
 // How the sparse symmetric positive definite systems are solved.
 enum class LinearMethod {
-  kAuto,               // the route measured fastest for each solver (docs/benchmarks.md,
-                       // "Solvers"): CG + Jacobi for Poisson, CHOLMOD for SSD and spectral
+  kAuto,               // the route measured best for each solver (docs/benchmarks.md):
+                       // Poisson: CG + Jacobi; SSD and spectral: CG + incomplete Cholesky from
+                       // the warm start when there is one, CHOLMOD when there is none or CG has
+                       // not converged after cg_fallback_iterations
   kCholmod,            // supernodal Cholesky (CHOLMOD with OpenBLAS); the symbolic analysis is
                        // reused while the sparsity pattern does not change
-  kConjugateGradient,  // Eigen's conjugate gradients from the warm start, if any. For SSD and
-                       // spectral, CHOLMOD solves instead when there is no warm start or when CG
-                       // has not converged after cg_fallback_iterations: in the progressive loop
-                       // about the time of kAuto with 35-40 % less memory
+  kConjugateGradient,  // Eigen's conjugate gradients from the warm start, if any, for every solve
 };
 
 enum class Preconditioner {
@@ -57,10 +56,9 @@ struct LinearSolverOptions {
   Preconditioner preconditioner = Preconditioner::kAuto;  // see Preconditioner
   double cg_tolerance = 1e-10;  // CG stops at |A x - b| <= tol |b|; the paper's tolerance (§4.4, Table 2)
   int cg_max_iterations = 20000;  // CG gives up (SolverError) after this many iterations
-  int cg_fallback_iterations = 2000;  // kConjugateGradient, SSD and spectral: CHOLMOD takes over
-                                      // from CG after this many iterations (the final solve of the
-                                      // shared data's 20k-point inputs needs about 100 with
-                                      // incomplete Cholesky, 1000-1500 with Jacobi); 0: CG only
+  int cg_fallback_iterations = 500;  // kAuto, SSD and spectral: CHOLMOD takes over from CG after
+                                     // this many iterations (the solves of the progressive loop
+                                     // on the shared data need 10-200)
   double max_residual = 1e-6;     // a direct solve whose |A x - b| / |b| exceeds this is a SolverError
 };
 

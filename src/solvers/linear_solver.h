@@ -17,8 +17,9 @@ namespace pdd::detail {
 struct LinearRoute {
   LinearMethod method = LinearMethod::kCholmod;               // kCholmod or kConjugateGradient
   Preconditioner preconditioner = Preconditioner::kJacobi;   // kJacobi or kIncompleteCholesky
-  // kConjugateGradient only, when > 0: CHOLMOD solves instead when there is
-  // no warm start, or once CG has run this many iterations without converging.
+  // kConjugateGradient only, when > 0 (LinearMethod::kAuto): CHOLMOD solves
+  // instead when there is no warm start, or once CG has run this many
+  // iterations without converging.
   int cholmod_after = 0;
 };
 

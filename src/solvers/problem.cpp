@@ -61,20 +61,21 @@ std::vector<int> outer_vertices(const Domain& domain) {
 }
 
 LinearRoute resolve_route(const LinearSolverOptions& options, SolverKind kind) {
-  // Measured (bench/solvers_bench.cpp, docs/benchmarks.md): the
-  // second-order Poisson system is solved fastest by CG with the Jacobi
-  // preconditioner from 10k vertices up; the fourth-order SSD and spectral
-  // systems (two-ring bi-Laplacian / Hessian terms) by CHOLMOD, CG needing
-  // hundreds (incomplete Cholesky) to thousands (Jacobi) of iterations from
-  // scratch. From a warm start CG is competitive and lighter: the CG route of
-  // those two keeps CHOLMOD for the solves without one.
+  // Measured (bench/solvers_bench.cpp, docs/benchmarks.md): the second-order
+  // Poisson system is solved fastest by CG with the Jacobi preconditioner
+  // from 10k vertices up. The fourth-order SSD and spectral systems (two-ring
+  // Hessian / bi-Laplacian terms) need hundreds (incomplete Cholesky) to
+  // thousands (Jacobi) of CG iterations from scratch, where CHOLMOD is
+  // faster; from the previous iteration's solution, as in the progressive
+  // loop, CG with incomplete Cholesky takes about the time of CHOLMOD with
+  // half its memory. So kAuto runs CG when there is a warm start and CHOLMOD
+  // when there is none (the first solve, Lanczos' inner solves) or CG stalls.
   LinearRoute route;
   route.method = options.method;
-  if (route.method == LinearMethod::kAuto)
-    route.method =
-        kind == SolverKind::kPoisson ? LinearMethod::kConjugateGradient : LinearMethod::kCholmod;
-  else if (route.method == LinearMethod::kConjugateGradient && kind != SolverKind::kPoisson)
-    route.cholmod_after = options.cg_fallback_iterations;
+  if (route.method == LinearMethod::kAuto) {
+    route.method = LinearMethod::kConjugateGradient;
+    if (kind != SolverKind::kPoisson) route.cholmod_after = options.cg_fallback_iterations;
+  }
   route.preconditioner = options.preconditioner;
   if (route.preconditioner == Preconditioner::kAuto)
     route.preconditioner =
