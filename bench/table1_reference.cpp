@@ -196,7 +196,11 @@ int build(const Options& o) {
 
   // (5) SSD and marching tetrahedra.
   t = Clock::now();
-  const auto solver = make_solver(SolverOptions{});
+  // CHOLMOD: f carried over from another domain is a poor start for CG (the
+  // default route would spend its 500 iterations before falling back).
+  SolverOptions direct;
+  direct.linear.method = LinearMethod::kCholmod;
+  const auto solver = make_solver(direct);
   const std::vector<double> warm = domain.f();
   domain.set_f(solver->solve(domain, points, &warm));
   const double seconds_solve = seconds_since(t);
