@@ -74,7 +74,20 @@ struct LinearSolver::Impl {
   CgJacobi cg_jacobi;
   CgIncompleteCholesky cg_ic;
   bool analyzed = false;
-  bool factorized = false;  // CHOLMOD holds the factor of *A
+  bool factorized = false;     // CHOLMOD holds the factor of *A
+  bool preconditioned = false;  // the CG preconditioner is that of *A
+
+  void precondition(Preconditioner preconditioner) {
+    if (preconditioner == Preconditioner::kJacobi) {
+      cg_jacobi.compute(*A);
+    } else {
+      cg_ic.compute(*A);
+      if (cg_ic.info() != Eigen::Success)
+        throw SolverError("incomplete Cholesky preconditioner failed (" +
+                          std::to_string(A->rows()) + " unknowns)");
+    }
+    preconditioned = true;
+  }
 
   // CHOLMOD's factor of *A, reusing the analysis while the pattern stays.
   // Returns whether the analysis was reused.
@@ -126,18 +139,15 @@ void LinearSolver::compute(const SparseMatrix& A) {
   Impl& d = *impl_;
   d.A = &A;
   d.factorized = false;
+  d.preconditioned = false;
   reused_analysis_ = false;
   factorize_seconds_in_solves_ = 0;
-  if (route_.method == LinearMethod::kCholmod) {
+  // With a CHOLMOD fallback, neither is built before a solve says which one
+  // it needs (Lanczos' inner solves, without a warm start, need no CG).
+  if (route_.method == LinearMethod::kCholmod)
     reused_analysis_ = d.factorize();
-  } else if (route_.preconditioner == Preconditioner::kJacobi) {
-    d.cg_jacobi.compute(A);
-  } else {
-    d.cg_ic.compute(A);
-    if (d.cg_ic.info() != Eigen::Success)
-      throw SolverError("incomplete Cholesky preconditioner failed (" + std::to_string(A.rows()) +
-                        " unknowns)");
-  }
+  else if (route_.cholmod_after == 0)
+    d.precondition(route_.preconditioner);
   factorize_seconds_ = seconds_since(start);
 }
 
@@ -150,11 +160,20 @@ void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     residual_ = 0;
     return;
   }
-  const std::string cg_name = route_.preconditioner == Preconditioner::kJacobi ? "cg+jacobi" : "cg+ic";
+  const std::string cg_name =
+      route_.preconditioner == Preconditioner::kJacobi ? "cg+jacobi" : "cg+ic";
   const bool warm = x.size() == b.size() && x.allFinite() && x.squaredNorm() > 0;
   bool direct = route_.method == LinearMethod::kCholmod || (route_.cholmod_after > 0 && !warm);
   method_ = direct ? "cholmod" : cg_name;
+  // Time spent preparing for this solve rather than in it.
+  auto prepare = [&](auto&& step) {
+    const auto start = Clock::now();
+    step();
+    factorize_seconds_in_solves_ += seconds_since(start);
+    factorize_seconds_ += seconds_since(start);
+  };
   if (!direct) {
+    if (!d.preconditioned) prepare([&] { d.precondition(route_.preconditioner); });
     bool converged;
     if (route_.preconditioner == Preconditioner::kJacobi) {
       iterations_ = run_cg(d.cg_jacobi, *d.A, b, x);
@@ -173,12 +192,7 @@ void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     }
   }
   if (direct) {
-    if (!d.factorized) {
-      const auto start = Clock::now();
-      reused_analysis_ = d.factorize();
-      factorize_seconds_in_solves_ += seconds_since(start);
-      factorize_seconds_ += seconds_since(start);
-    }
+    if (!d.factorized) prepare([&] { reused_analysis_ = d.factorize(); });
     x = d.cholmod.solve(b);
   }
   residual_ = (*d.A * x - b).norm() / b_norm;

@@ -33,7 +33,8 @@ class LinearSolver {
   // Prepares solves with the SPD matrix A (all entries stored; CHOLMOD reads
   // the lower triangle): CHOLMOD factorizes, reusing the symbolic analysis
   // of the previous matrix when the sparsity pattern is the same; CG builds
-  // its preconditioner. A is not copied: it must stay alive and unchanged
+  // its preconditioner (with LinearRoute::cholmod_after, the first solve()
+  // builds what it needs instead). A is not copied: it must stay alive and unchanged
   // until the last solve() with it. Throws SolverError when the
   // factorization fails (A not positive definite numerically).
   void compute(const SparseMatrix& A);
@@ -49,8 +50,9 @@ class LinearSolver {
   const std::string& method_name() const { return method_; }
   int iterations() const { return iterations_; }  // of the last solve (0 for CHOLMOD)
   double residual() const { return residual_; }   // |A x - b| / |b| of the last solve
-  // Of the last compute() and of the factorization that solve() made for it
-  // (LinearRoute::cholmod_after), which alone factorize_seconds_in_solves() counts.
+  // Of the last compute() and of the factorization or preconditioner that
+  // solve() built for it (LinearRoute::cholmod_after), which alone
+  // factorize_seconds_in_solves() counts.
   double factorize_seconds() const { return factorize_seconds_; }
   double factorize_seconds_in_solves() const { return factorize_seconds_in_solves_; }
   bool reused_analysis() const { return reused_analysis_; }        // last compute() kept the analysis
