@@ -56,7 +56,7 @@ using IterationCallback =
 // gradients (Jacobi) from the previous iteration's f, carried over to the
 // refined domain, to that loose tolerance on large domains: a coarse-to-fine
 // cascade, each domain starting from the solution of the coarser one. Off by
-// default: it saves 10-20 % of the time on dense inputs, but CG leaves the
+// default: at 1e-4 it saved 7-9 % of the time on dense inputs, but CG leaves the
 // smooth far-field error, which is what places the surface between sparse
 // samples and on the unseen side of a partial scan, and there it changed the
 // topology (a handle on fandisk_sparse at 1e-4, an open back on CGAL's hippo

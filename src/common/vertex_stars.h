@@ -4,6 +4,9 @@
 
 #include <pdd/types.h>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 #include <stdexcept>
@@ -50,6 +53,16 @@ inline void one_ring(const TetMesh& mesh, const VertexStars& stars, int v, std::
     for (int w : mesh.tets[stars.tets[k]]) ring.push_back(w);
   std::sort(ring.begin(), ring.end());
   ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+}
+
+// The closed one-ring of every vertex, computed in parallel.
+inline std::vector<std::vector<int>> one_rings(const TetMesh& mesh, const VertexStars& stars) {
+  const int n = static_cast<int>(mesh.vertices.size());
+  std::vector<std::vector<int>> rings(n);
+  tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
+    for (int v = r.begin(); v < r.end(); ++v) one_ring(mesh, stars, v, rings[v]);
+  });
+  return rings;
 }
 
 }  // namespace pdd::detail

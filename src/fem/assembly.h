@@ -60,10 +60,7 @@ inline TetGradients tet_gradients(const TetMesh& mesh, int t) {
 template <int Blocks, bool Interleaved = false, class ColumnFn>
 SparseMatrix assemble_by_columns(const TetMesh& mesh, const VertexStars& stars, ColumnFn column) {
   const int n = static_cast<int>(mesh.vertices.size());
-  std::vector<std::vector<int>> rings(n);
-  tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
-    for (int j = r.begin(); j < r.end(); ++j) one_ring(mesh, stars, j, rings[j]);
-  });
+  const std::vector<std::vector<int>> rings = one_rings(mesh, stars);
   SparseMatrix A(static_cast<Eigen::Index>(Blocks) * n, n);
   std::vector<long long> start(n + 1, 0);
   for (int j = 0; j < n; ++j)

@@ -81,25 +81,19 @@ void add_asap_term(const Domain& domain, double weight_scale, QuadraticAccumulat
   // per coordinate, x^T P x - 2 q^T x + |q|^2 with P = I_4 - 1/4 (the
   // centering, P q = q since the targets are centered). Zero-volume tets
   // have zero weight.
+  std::vector<double> weight(m);
+  for (std::size_t t = 0; t < m; ++t) weight[t] = weight_scale * std::abs(volume[t]);
   const detail::VertexStars& stars = q.stars();
   q.add_isotropic_by_columns([&](int j, auto add) {
     for (int s = stars.begin(j); s < stars.end(j); ++s) {
       const int t = stars.tets[s];
       const int jl = detail::local_index(tets[t], j);
-      const double w = weight_scale * std::abs(volume[t]);
-      for (int i = 0; i < 4; ++i) add(tets[t][i], w * ((i == jl) - 0.25));
-    }
-  });
-  tbb::parallel_for(0, static_cast<int>(x.size()), [&](int j) {
-    for (int s = stars.begin(j); s < stars.end(j); ++s) {
-      const int t = stars.tets[s];
-      const Vec3& target = targets[t][detail::local_index(tets[t], j)];
-      q.b.segment<3>(3 * j) += weight_scale * std::abs(volume[t]) * target;
+      for (int i = 0; i < 4; ++i) add(tets[t][i], weight[t] * ((i == jl) - 0.25));
+      q.b.segment<3>(3 * j) += weight[t] * targets[t][jl];
     }
   });
   for (std::size_t t = 0; t < m; ++t)
-    for (int i = 0; i < 4; ++i)
-      q.c += weight_scale * std::abs(volume[t]) * targets[t][i].squaredNorm();
+    for (int i = 0; i < 4; ++i) q.c += weight[t] * targets[t][i].squaredNorm();
 }
 
 }  // namespace pdd::optimize_detail

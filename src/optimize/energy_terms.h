@@ -32,8 +32,9 @@ class QuadraticAccumulator {
   void add_coupled(int i, int j, const Eigen::Matrix3d& m);
 
   // For every vertex j, in parallel: column(j, add) calls add(i, a) to add
-  // a I_3 to block (i, j). One task sums each column, in the order `column`
-  // gives, so the result does not depend on the scheduling.
+  // a I_3 to block (i, j), and may add to b's entries of j. One task sums
+  // each column, in the order `column` gives, so the result does not depend
+  // on the scheduling.
   template <class Column>
   void add_isotropic_by_columns(Column column) {
     const int n = static_cast<int>(offsets_.size()) - 1;

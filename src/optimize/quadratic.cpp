@@ -9,10 +9,7 @@ QuadraticAccumulator::QuadraticAccumulator(const Domain& domain) {
   const TetMesh mesh = domain.mesh();
   const int n = static_cast<int>(mesh.vertices.size());
   stars_ = detail::vertex_stars(mesh);
-  std::vector<std::vector<int>> rings(n);
-  tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
-    for (int v = r.begin(); v < r.end(); ++v) detail::one_ring(mesh, stars_, v, rings[v]);
-  });
+  const std::vector<std::vector<int>> rings = detail::one_rings(mesh, stars_);
   offsets_.assign(n + 1, 0);
   for (int v = 0; v < n; ++v) offsets_[v + 1] = offsets_[v] + static_cast<int>(rings[v].size());
   rows_.resize(offsets_[n]);

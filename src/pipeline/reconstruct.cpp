@@ -269,7 +269,7 @@ class Run {
 
   const PointSet& points_;
   const ReconstructOptions& options_;
-  std::unique_ptr<ImplicitSolver> solver_;       // the final solve, and small domains
+  std::unique_ptr<ImplicitSolver> solver_;       // every solve but the loose loop ones
   std::unique_ptr<ImplicitSolver> loop_solver_;  // LoopSolveOptions; null when off
   std::mt19937_64 rng_;
   Clock::time_point start_;
