@@ -386,6 +386,36 @@ TEST(SolverStats, SsdAutoRouteIsCgFromAWarmStartAndCholmodOtherwise) {
   EXPECT_LT(gap_fallback, 1e-9 * largest);
 }
 
+TEST(SolverStats, IncompleteCholeskyKeepsTheShiftThatWorked) {
+  const PointSet samples = test::sample_sphere(800);
+  const Domain domain = shell_domain(samples, sphere_distance(), 0.12);
+  SolverOptions o = options_for(SolverKind::kSsd);
+  o.linear.method = LinearMethod::kConjugateGradient;
+  o.linear.preconditioner = Preconditioner::kIncompleteCholesky;
+  const std::vector<double> exact = make_solver(options_for(SolverKind::kSsd))->solve(domain, samples);
+  double largest = 0;
+  for (double x : exact) largest = std::max(largest, std::abs(x));
+  for (double initial : {0.0, 0.01, 0.2}) {
+    o.linear.ic_shift = initial;
+    auto solver = make_solver(o);
+    const std::vector<double> first = solver->solve(domain, samples);
+    const double shift = solver->stats().ic_shift;
+    // Unshifted, this SSD system breaks down (a pivot <= 0): Eigen retries
+    // with more shift, and the solver starts its next factorization there.
+    if (initial == 0) EXPECT_GT(shift, 0);
+    EXPECT_GE(shift, initial);
+    const std::vector<double> second = solver->solve(domain, samples);
+    EXPECT_EQ(solver->stats().ic_shift, shift);
+    EXPECT_LE(solver->stats().residual, 1e-10);
+    double gap = 0;
+    for (std::size_t v = 0; v < exact.size(); ++v)
+      gap = std::max({gap, std::abs(first[v] - exact[v]), std::abs(second[v] - exact[v])});
+    EXPECT_LT(gap, 1e-6 * largest) << "ic_shift " << initial;
+  }
+  o.linear.ic_shift = -1;
+  EXPECT_THROW(make_solver(o), InputError);
+}
+
 TEST(SolverOptions, KindsParseAndBadWeightsAreInputErrors) {
   EXPECT_EQ(parse_solver_kind("Poisson"), SolverKind::kPoisson);
   EXPECT_EQ(parse_solver_kind("ssd"), SolverKind::kSsd);

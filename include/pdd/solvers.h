@@ -60,6 +60,12 @@ struct LinearSolverOptions {
                                      // this many iterations (the solves of the progressive loop
                                      // on the shared data need 10-200)
   double max_residual = 1e-6;     // a direct solve whose |A x - b| / |b| exceeds this is a SolverError
+  // The incomplete Cholesky preconditioner factors A + shift diag(|a_j|), |a_j| the norm of
+  // column j, with shift = ic_shift at first. A breakdown (a pivot <= 0) restarts the
+  // factorization with more shift; the shift that worked is kept for the solver's next systems.
+  // Unshifted, the SSD systems of the shared data broke down up to five times in a row (1.1-1.6 s
+  // instead of 0.4-0.5 s at 40k unknowns, docs/benchmarks.md).
+  double ic_shift = 0.01;
 };
 
 // Screened Poisson, Eqs. (13)-(14):
@@ -145,6 +151,8 @@ struct SolverStats {
   double factorize_seconds = 0;  // symbolic + numeric factorization, or preconditioner
   double solve_seconds = 0;      // triangular solves / CG / Lanczos, and the median shift
   bool reused_analysis = false;  // the symbolic factorization of the previous solve was kept
+  double ic_shift = 0;           // cg+ic: the diagonal shift its preconditioner was built with
+                                 // (LinearSolverOptions::ic_shift, raised by breakdowns)
   std::size_t num_vertices = 0;
   std::size_t num_points = 0;
   std::size_t nonzeros = 0;      // in the system matrix (lower and upper)

@@ -7,6 +7,7 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/IterativeLinearSolvers>
 
+#include <algorithm>
 #include <sstream>
 
 namespace pdd::detail {
@@ -53,6 +54,29 @@ void correct_warm_start(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::
   if (ac.allFinite()) x = ac[0] * x + ac[1] * ones;
 }
 
+// A + shift diag(|a_j|), |a_j| the norm of column j. Eigen's incomplete
+// Cholesky factors S A S, S = diag(1 / sqrt|a_j|) (Lin and More), so this
+// adds about `shift` to the diagonal of the matrix it factors.
+SparseMatrix shifted_for_ic(const SparseMatrix& A, double shift) {
+  SparseMatrix shifted = A;
+  for (Eigen::Index j = 0; j < A.outerSize(); ++j)
+    shifted.coeffRef(j, j) += shift * A.col(j).norm();
+  return shifted;
+}
+
+// The shift Eigen's incomplete Cholesky of M added to its scaled diagonal
+// after breakdowns (a pivot <= 0; each one restarts the factorization with
+// twice the shift), 0 if there were none. Read off the first pivot, which
+// no column updates: L_00^2 = (S P M P^T S)_00 + shift.
+double breakdown_shift(const IncompleteCholesky& ic, const SparseMatrix& M) {
+  Eigen::Index first = 0;  // the column of M that the ordering puts first
+  const auto& order = ic.permutationP().indices();
+  while (order.size() > 0 && order[first] != 0) ++first;
+  const double pivot = ic.matrixL().coeff(0, 0);
+  const double scale = ic.scalingS()[0];
+  return std::max(0.0, pivot * pivot - scale * scale * M.coeff(first, first));
+}
+
 template <class Cg>
 int run_cg(Cg& cg, const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   if (x.size() == b.size() && x.allFinite() && x.squaredNorm() > 0) {
@@ -76,15 +100,23 @@ struct LinearSolver::Impl {
   bool analyzed = false;
   bool factorized = false;     // CHOLMOD holds the factor of *A
   bool preconditioned = false;  // the CG preconditioner is that of *A
+  double ic_shift = 0;          // of the last preconditioner, see precondition()
 
   void precondition(Preconditioner preconditioner) {
     if (preconditioner == Preconditioner::kJacobi) {
       cg_jacobi.compute(*A);
     } else {
-      cg_ic.compute(*A);
-      if (cg_ic.info() != Eigen::Success)
+      // CG iterates with A; the preconditioner factors A shifted by the
+      // smallest shift that worked so far, so that the systems of the next
+      // iterations, much alike, break down less often.
+      const SparseMatrix shifted = shifted_for_ic(*A, ic_shift);
+      cg_ic.analyzePattern(*A);
+      cg_ic.preconditioner().factorize(shifted);
+      if (cg_ic.preconditioner().info() != Eigen::Success)
         throw SolverError("incomplete Cholesky preconditioner failed (" +
                           std::to_string(A->rows()) + " unknowns)");
+      const double added = breakdown_shift(cg_ic.preconditioner(), shifted);
+      if (added > 1e-9) ic_shift += added;
     }
     preconditioned = true;
   }
@@ -113,7 +145,10 @@ LinearSolver::LinearSolver(const LinearSolverOptions& options, const LinearRoute
     : impl_(std::make_unique<Impl>()), route_(route) {
   if (route.method == LinearMethod::kAuto || route.preconditioner == Preconditioner::kAuto)
     throw std::invalid_argument("LinearSolver: the route must be resolved (not kAuto)");
+  if (!(options.ic_shift >= 0))
+    throw InputError("linear solver: ic_shift must be >= 0, got " + std::to_string(options.ic_shift));
   impl_->options = options;
+  impl_->ic_shift = options.ic_shift;
   cholmod_common& common = impl_->cholmod.cholmod();
   common.print = 0;  // failures are reported as SolverError, not printed
   // Nested dissection (METIS) only: CHOLMOD's default also tries AMD first and
@@ -155,6 +190,7 @@ void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   Impl& d = *impl_;
   const double b_norm = b.norm();
   iterations_ = 0;
+  ic_shift_ = 0;
   if (b_norm == 0) {
     x.setZero(b.size());
     residual_ = 0;
@@ -181,6 +217,7 @@ void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     } else {
       iterations_ = run_cg(d.cg_ic, *d.A, b, x);
       converged = d.cg_ic.info() == Eigen::Success;
+      ic_shift_ = d.ic_shift;
     }
     if (!converged && route_.cholmod_after > 0) {
       direct = true;

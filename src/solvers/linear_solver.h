@@ -56,6 +56,7 @@ class LinearSolver {
   double factorize_seconds() const { return factorize_seconds_; }
   double factorize_seconds_in_solves() const { return factorize_seconds_in_solves_; }
   bool reused_analysis() const { return reused_analysis_; }        // last compute() kept the analysis
+  double ic_shift() const { return ic_shift_; }  // of the last solve by cg+ic, else 0
 
   // Copies the above into stats (method, iterations, residual,
   // factorize_seconds, reused_analysis).
@@ -65,6 +66,7 @@ class LinearSolver {
     stats.residual = residual_;
     stats.factorize_seconds = factorize_seconds_;
     stats.reused_analysis = reused_analysis_;
+    stats.ic_shift = ic_shift_;
   }
 
  private:
@@ -76,6 +78,7 @@ class LinearSolver {
   double factorize_seconds_ = 0;
   double factorize_seconds_in_solves_ = 0;
   bool reused_analysis_ = false;
+  double ic_shift_ = 0;
   std::string method_ = "none";
 };
 
