@@ -179,7 +179,12 @@ void add_reconstruct_command(CLI::App& app) {
       ->check(greater_than(0))
       ->capture_default_str();
   cmd->add_option("--optimizer-rounds", args->options.optimizer_rounds,
-                  "Optimizer passes per iteration (§3.3)")
+                  "Optimizer passes (§3.3) on each refined domain, before it is solved on")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  cmd->add_option("--optimizer-rounds-before-refining",
+                  args->options.optimizer_rounds_before_refining,
+                  "Optimizer passes after each solve that the refiner follows")
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
   cmd->add_option("--hole-coarsening", args->options.away_from_data.max_factor,

@@ -215,6 +215,23 @@ TEST(Pipeline, LoopSolvesAreLooseAndTheFinalSolveExact) {
               static_cast<double>(exact.mesh.faces.size()), 0.1 * exact.mesh.faces.size());
 }
 
+TEST(Pipeline, EverySolveButTheFirstRunsOnAnOptimizedRefinedDomain) {
+  // Optimizer passes on both sides of the refiner: each iteration after the
+  // first optimizes its refined domain and then solves on it, and the last
+  // of these solves is the final one (no second solve on the same domain).
+  const PointSet input = test::sample_sphere(1000);
+  const Result r = reconstruct(input, fast_options(SolverKind::kSsd, 0.15));
+  ASSERT_GE(r.iterations.size(), 3u);
+  EXPECT_EQ(r.iterations.front().solver.method, "cholmod");
+  for (std::size_t i = 1; i < r.iterations.size(); ++i) {
+    const IterationStats& s = r.iterations[i];
+    EXPECT_GT(s.vertices, r.iterations[i - 1].vertices) << "iteration " << s.iteration;
+    EXPECT_GT(s.optimizer_cg_iterations, 0) << "iteration " << s.iteration;
+    EXPECT_GT(r.iterations[i - 1].inserted_points, 0) << "iteration " << s.iteration - 1;
+  }
+  EXPECT_EQ(r.iterations.back().inserted_points, 0);
+}
+
 TEST(Pipeline, RejectsBadOptions) {
   const PointSet input = test::sample_sphere(100);
   ReconstructOptions o;
@@ -222,6 +239,9 @@ TEST(Pipeline, RejectsBadOptions) {
   EXPECT_THROW(reconstruct(input, o), InputError);
   o = ReconstructOptions();
   o.loop_solve.tolerance = -1;
+  EXPECT_THROW(reconstruct(input, o), InputError);
+  o = ReconstructOptions();
+  o.optimizer_rounds_before_refining = -1;
   EXPECT_THROW(reconstruct(input, o), InputError);
   EXPECT_THROW(parse_domain_strategy("quadtree"), InputError);
   EXPECT_THROW(parse_sizing_kind("curvy"), InputError);

@@ -402,7 +402,9 @@ TEST(SolverStats, IncompleteCholeskyKeepsTheShiftThatWorked) {
     const double shift = solver->stats().ic_shift;
     // Unshifted, this SSD system breaks down (a pivot <= 0): Eigen retries
     // with more shift, and the solver starts its next factorization there.
-    if (initial == 0) EXPECT_GT(shift, 0);
+    if (initial == 0) {
+      EXPECT_GT(shift, 0);
+    }
     EXPECT_GE(shift, initial);
     const std::vector<double> second = solver->solve(domain, samples);
     EXPECT_EQ(solver->stats().ic_shift, shift);

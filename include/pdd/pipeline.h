@@ -74,8 +74,11 @@ struct ReconstructOptions {
   SolverOptions solver;        // §3.5: SSD by default
   LoopSolveOptions loop_solve;  // the solves before the final one (see LoopSolveOptions)
   OptimizerOptions optimizer;  // §3.3: lambda_a = 60, lambda_m = 3 (optimize.h)
-  int optimizer_rounds = 2;    // optimizer passes per iteration (the paper's Figure 7 shows one or
-                               // more per iteration; two measured better, docs/benchmarks.md)
+  // Optimizer passes (§3.3) per iteration: on each refined domain before it is solved on, with
+  // the previous solution carried over (so that every solve runs on optimized tets), and after
+  // a solve, with its solution, before the domain is refined (docs/benchmarks.md, "Loop order").
+  int optimizer_rounds = 2;
+  int optimizer_rounds_before_refining = 1;
   bool cleanup = true;         // flips and needle collapses on the final isosurface (contour.h);
                                // not part of the paper, docs/benchmarks.md "Isosurface clean-up"
   CleanupOptions cleanup_options;

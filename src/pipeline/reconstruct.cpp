@@ -91,17 +91,28 @@ class Run {
         rng_(options.seed),
         start_(Clock::now()) {}
 
+  // Figure 3, with optimizer passes on both sides of the refiner: after a
+  // solve, with its solution (the isosurface the refiner then samples is
+  // that of well-shaped tets), and on the refined domain before the next
+  // solve, with the solution carried over to the new vertices. So every
+  // solve runs on optimized tets, which CG converges fast on (Table 2), and
+  // the last solve is the final one: no second solve on the finest domain.
   Result progressive() {
     Domain domain = initial_domain();
     const auto sizing = make_sizing(points_, options_);
-    bool refined_last = false;  // the domain changed since it was last optimized
+    bool refined_last = false;  // the domain changed since it was last solved on
+    bool loose_last = false;    // the last solve stopped at LoopSolveOptions::tolerance
     for (int it = 1; it <= options_.max_iterations; ++it) {
-      IterationStats stats = solve(domain, it, loop_solver(domain, it));
-      optimize(domain, it, stats);
+      IterationStats stats;
+      if (refined_last) optimize(domain, it, stats, options_.optimizer_rounds);
+      ImplicitSolver& solver = loop_solver(domain, it);
+      solve(domain, it, solver, stats);
       refined_last = false;
+      loose_last = &solver != solver_.get();
       const bool over_budget = domain.num_vertices() >= options_.max_vertices;
       bool converged = sizing_met(isofacet_area_stats(domain, *sizing));
       if (!over_budget && !converged) {
+        optimize(domain, it, stats, options_.optimizer_rounds_before_refining);
         report("refine", it, domain);
         const auto t = Clock::now();
         const RefinementStats refined = refine(domain, *sizing, rng_);
@@ -113,11 +124,12 @@ class Run {
         converged = refined.trisected + refined.bisected <
                     options_.min_refined_fraction * refined.crossing_tets;
       }
+      const bool last = over_budget || converged || it == options_.max_iterations;
+      if (last && !refined_last && !loose_last)
+        return finish_with(std::move(domain), std::move(stats));
       result_.iterations.push_back(stats);
-      if (over_budget || converged) break;
+      if (last) break;
     }
-    // Figure 3: the final solve happens on the optimized domain; it already
-    // is when the loop stopped before refining.
     return finish(std::move(domain), /*optimize_first=*/refined_last);
   }
 
@@ -127,7 +139,9 @@ class Run {
   Result direct() {
     Domain domain = initial_domain();
     const auto sizing = make_sizing(points_, options_);
-    result_.iterations.push_back(solve(domain, 1, *solver_));
+    IterationStats first;
+    solve(domain, 1, *solver_, first);
+    result_.iterations.push_back(first);
     for (int it = 1; it <= options_.max_iterations; ++it) {
       if (domain.num_vertices() >= options_.max_vertices ||
           sizing_met(isofacet_area_stats(domain, *sizing)))
@@ -189,8 +203,7 @@ class Run {
 
   // Solves on the domain (warm-started from the current f) and measures the
   // isosurface; the contour is kept for the final iteration.
-  IterationStats solve(Domain& domain, int iteration, ImplicitSolver& solver) {
-    IterationStats stats;
+  void solve(Domain& domain, int iteration, ImplicitSolver& solver, IterationStats& stats) {
     stats.iteration = iteration;
     report("solve", iteration, domain);
     auto t = Clock::now();
@@ -205,18 +218,17 @@ class Run {
     stats.seconds_contour = seconds_since(t);
     measure(domain, stats);
     if (options_.on_iteration) options_.on_iteration(stats, domain, contour_.mesh);
-    return stats;
   }
 
-  void optimize(Domain& domain, int iteration, IterationStats& stats) {
+  void optimize(Domain& domain, int iteration, IterationStats& stats, int rounds) {
     const auto t = Clock::now();
-    for (int round = 0; round < options_.optimizer_rounds; ++round) {
+    for (int round = 0; round < rounds; ++round) {
       report("optimize", iteration, domain);
       const OptimizerReport r = optimize_domain(domain, options_.optimizer);
       stats.optimizer_cg_iterations += r.cg_iterations;
       stats.rejected_moves += r.rejected_moves;
     }
-    stats.seconds_optimize = seconds_since(t);
+    stats.seconds_optimize += seconds_since(t);
   }
 
   // Flips and needle collapses on the final isosurface; the final
@@ -250,16 +262,21 @@ class Run {
     stats.fraction_below_30 = q.fraction_below_30;
   }
 
-  // The final solve on the final domain, and its isosurface.
+  // The final solve on the final domain (optimized first if asked), and
+  // its isosurface.
   Result finish(Domain domain, bool optimize_first = false) {
     const int last = result_.iterations.empty() ? 1 : result_.iterations.back().iteration + 1;
     loop_solver_.reset();  // its state is not needed any more: memory for the final solve
-    IterationStats optimized;
-    if (optimize_first) optimize(domain, last, optimized);
-    result_.iterations.push_back(solve(domain, last, *solver_));
-    result_.iterations.back().seconds_optimize = optimized.seconds_optimize;
-    result_.iterations.back().optimizer_cg_iterations = optimized.optimizer_cg_iterations;
-    result_.iterations.back().rejected_moves = optimized.rejected_moves;
+    IterationStats stats;
+    if (optimize_first) optimize(domain, last, stats, options_.optimizer_rounds);
+    solve(domain, last, *solver_, stats);
+    return finish_with(std::move(domain), std::move(stats));
+  }
+
+  // The result, with `stats` (of the solve whose contour is contour_) as its
+  // final iteration.
+  Result finish_with(Domain domain, IterationStats stats) {
+    result_.iterations.push_back(std::move(stats));
     result_.mesh = std::move(contour_.mesh);
     if (options_.cleanup) clean_up(domain, result_.iterations.back());
     result_.domain = std::move(domain);
@@ -309,9 +326,10 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
   if (options.max_iterations < 1)
     throw InputError("reconstruct: at least one iteration is needed, got " +
                      std::to_string(options.max_iterations));
-  if (options.optimizer_rounds < 0)
+  if (options.optimizer_rounds < 0 || options.optimizer_rounds_before_refining < 0)
     throw InputError("reconstruct: optimizer rounds must be >= 0, got " +
-                     std::to_string(options.optimizer_rounds));
+                     std::to_string(options.optimizer_rounds) + " and " +
+                     std::to_string(options.optimizer_rounds_before_refining));
   if (options.threads < 0)
     throw InputError("reconstruct: threads must be >= 0, got " + std::to_string(options.threads));
   std::optional<tbb::global_control> threads;
