@@ -7,6 +7,7 @@
 #include "common/vertex_stars.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Core>
@@ -38,9 +39,19 @@ class QuadraticAccumulator {
   template <class Column>
   void add_isotropic_by_columns(Column column) {
     const int n = static_cast<int>(offsets_.size()) - 1;
+    // Per thread, the block of each row vertex in the current column: a
+    // table lookup instead of a search of the column for every term.
+    tbb::enumerable_thread_specific<std::vector<int>> slots([n] { return std::vector<int>(n, -1); });
     tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
-      for (int j = r.begin(); j < r.end(); ++j)
-        column(j, [&](int i, double a) { isotropic_[block(i, j)] += a; });
+      std::vector<int>& slot = slots.local();
+      for (int j = r.begin(); j < r.end(); ++j) {
+        for (int s = offsets_[j]; s < offsets_[j + 1]; ++s) slot[rows_[s]] = s;
+        column(j, [&](int i, double a) {
+          const int s = slot[i];
+          if (s < offsets_[j] || s >= offsets_[j + 1]) no_block();
+          isotropic_[s] += a;
+        });
+      }
     });
   }
 
@@ -56,6 +67,7 @@ class QuadraticAccumulator {
 
  private:
   int block(int i, int j) const;  // index of block (i, j) in column j's blocks
+  [[noreturn]] static void no_block();  // a term coupled two vertices of no common tet
 
   detail::VertexStars stars_;
   std::vector<int> offsets_;  // |V| + 1: column j's blocks are offsets_[j] ... offsets_[j + 1) - 1

@@ -23,9 +23,12 @@ QuadraticAccumulator::QuadraticAccumulator(const Domain& domain) {
 int QuadraticAccumulator::block(int i, int j) const {
   const auto first = rows_.begin() + offsets_[j], last = rows_.begin() + offsets_[j + 1];
   const auto it = std::lower_bound(first, last, i);
-  if (it == last || *it != i)
-    throw std::logic_error("optimizer: a term couples two vertices of no common tet");
+  if (it == last || *it != i) no_block();
   return static_cast<int>(it - rows_.begin());
+}
+
+void QuadraticAccumulator::no_block() {
+  throw std::logic_error("optimizer: a term couples two vertices of no common tet");
 }
 
 void QuadraticAccumulator::add_coupled(int i, int j, const Eigen::Matrix3d& m) {
