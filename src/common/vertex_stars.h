@@ -47,6 +47,13 @@ inline int local_index(const std::array<int, 4>& tet, int v) {
   return -1;
 }
 
+// One table of n ints per thread, -1 at first: markers or positions by
+// vertex for tasks that visit vertices one at a time.
+using PerThreadTable = tbb::enumerable_thread_specific<std::vector<int>>;
+inline PerThreadTable per_thread_table(int n) {
+  return PerThreadTable([n] { return std::vector<int>(n, -1); });
+}
+
 // The closed one-ring of every vertex (v and its neighbours, sorted),
 // computed in parallel. Each neighbour is taken once, through a marker per
 // thread, so that only the ring itself (about 15 vertices) is sorted, not
@@ -54,7 +61,7 @@ inline int local_index(const std::array<int, 4>& tet, int v) {
 inline std::vector<std::vector<int>> one_rings(const TetMesh& mesh, const VertexStars& stars) {
   const int n = static_cast<int>(mesh.vertices.size());
   std::vector<std::vector<int>> rings(n);
-  tbb::enumerable_thread_specific<std::vector<int>> markers([n] { return std::vector<int>(n, -1); });
+  PerThreadTable markers = per_thread_table(n);
   tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
     std::vector<int>& marker = markers.local();
     for (int v = r.begin(); v < r.end(); ++v) {

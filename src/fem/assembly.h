@@ -15,7 +15,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include <algorithm>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -73,11 +72,15 @@ SparseMatrix assemble_by_columns(const TetMesh& mesh, const VertexStars& stars, 
   int* inner = A.innerIndexPtr();
   double* values = A.valuePtr();
   for (int j = 0; j <= n; ++j) outer[j] = static_cast<int>(start[j]);
+  // Per thread, the position of each vertex in the current column's ring.
+  PerThreadTable positions = per_thread_table(n);
   tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
     double local[4 * Blocks];
+    std::vector<int>& position = positions.local();
     for (int j = r.begin(); j < r.end(); ++j) {
       const std::vector<int>& ring = rings[j];
       const int m = static_cast<int>(ring.size());
+      for (int k = 0; k < m; ++k) position[ring[k]] = k;
       int* rows = inner + start[j];
       double* vals = values + start[j];
       // Position of (ring vertex k, block b) in the column, rows sorted.
@@ -92,8 +95,7 @@ SparseMatrix assemble_by_columns(const TetMesh& mesh, const VertexStars& stars, 
         const auto& tet = mesh.tets[t];
         column(t, local_index(tet, j), local);
         for (int i = 0; i < 4; ++i) {
-          const int k = static_cast<int>(std::lower_bound(ring.begin(), ring.end(), tet[i]) -
-                                         ring.begin());
+          const int k = position[tet[i]];
           for (int b = 0; b < Blocks; ++b) vals[slot(k, b)] += local[i * Blocks + b];
         }
       }

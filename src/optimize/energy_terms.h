@@ -7,7 +7,6 @@
 #include "common/vertex_stars.h"
 
 #include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Core>
@@ -41,7 +40,7 @@ class QuadraticAccumulator {
     const int n = static_cast<int>(offsets_.size()) - 1;
     // Per thread, the block of each row vertex in the current column: a
     // table lookup instead of a search of the column for every term.
-    tbb::enumerable_thread_specific<std::vector<int>> slots([n] { return std::vector<int>(n, -1); });
+    detail::PerThreadTable slots = detail::per_thread_table(n);
     tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
       std::vector<int>& slot = slots.local();
       for (int j = r.begin(); j < r.end(); ++j) {
