@@ -141,8 +141,9 @@ void add_reconstruct_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--loop-tolerance", args->options.loop_solve.tolerance,
                   "If > 0, the solves before the final one stop at this relative residual on "
-                  "domains of 10k vertices or more (faster on dense scans; can change the "
-                  "topology of sparse or partial ones)")
+                  "domains of 10k vertices or more, and a converged solve follows the last one "
+                  "(no faster with the default loop; can change the topology of sparse or "
+                  "partial ones)")
       ->check(at_least(0))
       ->capture_default_str();
   cmd->add_option("--domain", args->strategy,

@@ -55,8 +55,11 @@ using IterationCallback =
 // final solve decides the output. With tolerance > 0 they run conjugate
 // gradients (Jacobi) from the previous iteration's f, carried over to the
 // refined domain, to that loose tolerance on large domains: a coarse-to-fine
-// cascade, each domain starting from the solution of the coarser one. Off by
-// default: at 1e-4 it saved 7-9 % of the time on dense inputs, but CG leaves the
+// cascade, each domain starting from the solution of the coarser one; when the
+// last of them is loose, a converged solve follows on the same domain. Off by
+// default: at 1e-4 it saved 7-9 % of the time on dense inputs with the paper's
+// loop order and saves nothing with ours (ReconstructOptions::optimizer_rounds:
+// the last loop solve is the final one), and CG leaves the
 // smooth far-field error, which is what places the surface between sparse
 // samples and on the unseen side of a partial scan, and there it changed the
 // topology (a handle on fandisk_sparse at 1e-4, an open back on CGAL's hippo
