@@ -50,6 +50,15 @@ inline TetGradients tet_gradients(const TetMesh& mesh, int t) {
   return g;
 }
 
+// tet_gradients of every tet, computed once, in parallel: the assemblies
+// below visit each tet from the columns of its four corners.
+inline std::vector<TetGradients> all_tet_gradients(const TetMesh& mesh) {
+  std::vector<TetGradients> g(mesh.tets.size());
+  tbb::parallel_for(std::size_t(0), g.size(),
+                    [&](std::size_t t) { g[t] = tet_gradients(mesh, static_cast<int>(t)); });
+  return g;
+}
+
 // Assembles a (Blocks * |V|) x |V| matrix whose column j is
 //   sum over tets t incident to j of contributions to rows b * |V| + v
 //   (or v * Blocks + b when Interleaved),

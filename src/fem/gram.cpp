@@ -123,37 +123,35 @@ SparseMatrix gram_matrix(const SparseMatrix& A, const Eigen::VectorXd& d) {
 
 SparseMatrix hessian_energy(const TetMesh& mesh) {
   // Rows 9v + ab: column j holds, for each v in the ring of j, the 9 entries
-  // (H_v)_{ab, j} next to each other; column 9v + ab of Ht is row (v, ab) of
-  // H, and the 9 columns of a vertex share the pattern "ring of v".
+  // (H_v)_{ab, j} next to each other. Row (v, ab) of H is read off column v:
+  // (H_v)_{ab, k} = sum_t vol_t d_b(phi_v) d_a(phi_k) = (H_k)_{ba, v}, so
+  // no transpose of H is needed.
   const SparseMatrix H = detail::hessian_matrix_rows(mesh, true);
-  const SparseMatrix Ht = compressed(H.transpose());
   const Eigen::VectorXd inverse_mass = vertex_masses(mesh).cwiseInverse();
   const int* h_outer = H.outerIndexPtr();
   const int* h_inner = H.innerIndexPtr();
   const double* h_value = H.valuePtr();
-  const int* t_outer = Ht.outerIndexPtr();
-  const int* t_inner = Ht.innerIndexPtr();
-  const double* t_value = Ht.valuePtr();
   // Column j = sum over v of (1 / m_v) H_v^T (H_v)_{:, j}, H_v the dense
   // 9 x |ring(v)| block of the rows of v.
   return accumulate_columns(
       static_cast<int>(mesh.vertices.size()),
       [&](int j, auto&& visit) {
         for (int p = h_outer[j]; p < h_outer[j + 1]; p += 9) {
-          const int c = h_inner[p];  // = 9v, the block's first row
-          for (int q = t_outer[c]; q < t_outer[c + 1]; ++q) visit(t_inner[q]);
+          const int v = h_inner[p] / 9;
+          for (int q = h_outer[v]; q < h_outer[v + 1]; q += 9) visit(h_inner[q] / 9);
         }
       },
       [&](int j, auto&& add) {
         for (int p = h_outer[j]; p < h_outer[j + 1]; p += 9) {
-          const int c = h_inner[p];
-          const double w = inverse_mass[c / 9];
-          const int len = t_outer[c + 1] - t_outer[c];
-          const double* block = t_value + t_outer[c];  // 9 columns of length len, contiguous
-          for (int q = 0; q < len; ++q) {
+          const int v = h_inner[p] / 9;
+          const double w = inverse_mass[v];
+          const double* hj = h_value + p;  // (H_v)_{ab, j} at 3a + b
+          for (int q = h_outer[v]; q < h_outer[v + 1]; q += 9) {
+            const double* hk = h_value + q;  // (H_v)_{ab, k} at 3b + a, k = h_inner[q] / 9
             double x = 0;
-            for (int ab = 0; ab < 9; ++ab) x += h_value[p + ab] * block[ab * len + q];
-            add(t_inner[t_outer[c] + q], w * x);
+            for (int a = 0; a < 3; ++a)
+              for (int b = 0; b < 3; ++b) x += hj[3 * a + b] * hk[3 * b + a];
+            add(h_inner[q] / 9, w * x);
           }
         }
       });

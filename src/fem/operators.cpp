@@ -38,6 +38,7 @@ SparseMatrix gradient_matrix(const TetMesh& mesh) {
   // because stars list tets in increasing order: the compressed arrays are
   // written directly.
   const detail::VertexStars stars = detail::vertex_stars(mesh);
+  const std::vector<TetGradients> gradients = detail::all_tet_gradients(mesh);
   const int n = static_cast<int>(mesh.vertices.size());
   SparseMatrix G(3 * static_cast<Eigen::Index>(mesh.tets.size()), n);
   G.resizeNonZeros(3 * static_cast<Eigen::Index>(stars.tets.size()));
@@ -45,8 +46,7 @@ SparseMatrix gradient_matrix(const TetMesh& mesh) {
   tbb::parallel_for(0, n, [&](int v) {
     for (int s = stars.begin(v); s < stars.end(v); ++s) {
       const int t = stars.tets[s];
-      const TetGradients g = tet_gradients(mesh, t);
-      const Vec3& grad = g.grad[detail::local_index(mesh.tets[t], v)];
+      const Vec3& grad = gradients[t].grad[detail::local_index(mesh.tets[t], v)];
       for (int k = 0; k < 3; ++k) {
         G.innerIndexPtr()[3 * s + k] = 3 * t + k;
         G.valuePtr()[3 * s + k] = grad[k];
@@ -96,8 +96,9 @@ SparseMatrix weighted_stiffness(const TetMesh& mesh, const std::vector<Eigen::Ma
   if (weights.size() != mesh.tets.size())
     throw std::invalid_argument("weighted_stiffness: one 3x3 weight per tet is required");
   const detail::VertexStars stars = detail::vertex_stars(mesh);
+  const std::vector<TetGradients> gradients = detail::all_tet_gradients(mesh);
   return detail::assemble_by_columns<1>(mesh, stars, [&](int t, int jl, double* out) {
-    const TetGradients g = tet_gradients(mesh, t);
+    const TetGradients& g = gradients[t];
     const Vec3 wj = weights[t] * g.grad[jl];
     for (int i = 0; i < 4; ++i) out[i] = g.grad[i].dot(wj);
   });
@@ -109,8 +110,9 @@ namespace detail {
 
 SparseMatrix hessian_matrix_rows(const TetMesh& mesh, bool interleaved) {
   const VertexStars stars = vertex_stars(mesh);
+  const std::vector<TetGradients> gradients = all_tet_gradients(mesh);
   const auto column = [&](int t, int jl, double* out) {
-    const TetGradients g = tet_gradients(mesh, t);
+    const TetGradients& g = gradients[t];
     for (int i = 0; i < 4; ++i)
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b)
