@@ -109,6 +109,9 @@ class Domain {
   void move_vertices(const std::vector<Vec3>& new_positions);
   // The same on a new domain, this one unchanged (no copy of it is made).
   Domain moved(const std::vector<Vec3>& new_positions) const;
+  // The same with f at the new positions given (one value per vertex) by a
+  // caller that has located them already.
+  Domain moved(const std::vector<Vec3>& new_positions, std::vector<double> f) const;
 
  private:
   struct Impl;

@@ -116,15 +116,24 @@ Domain Domain::moved(const std::vector<Vec3>& new_positions) const {
   const std::size_t n = num_vertices();
   if (new_positions.size() != n)
     throw std::invalid_argument("Domain::move_vertices: one position per vertex is required");
-  Domain out;
-  Impl& o = *out.impl_;
   // f at the new positions, interpolated in the old triangulation; a vertex
   // that left the old domain keeps its value.
-  o.f.resize(n);
+  std::vector<double> f(n);
   for (std::size_t i = 0; i < n; ++i) {
     const auto c = d.finite_cell_containing(new_positions[i], d.handles[i]->cell());
-    o.f[i] = c == Delaunay::Cell_handle() ? d.f[i] : d.interpolate_in(c, new_positions[i], d.f);
+    f[i] = c == Delaunay::Cell_handle() ? d.f[i] : d.interpolate_in(c, new_positions[i], d.f);
   }
+  return moved(new_positions, std::move(f));
+}
+
+Domain Domain::moved(const std::vector<Vec3>& new_positions, std::vector<double> f) const {
+  const Impl& d = *impl_;
+  const std::size_t n = num_vertices();
+  if (new_positions.size() != n || f.size() != n)
+    throw std::invalid_argument("Domain::move_vertices: one position and value per vertex is required");
+  Domain out;
+  Impl& o = *out.impl_;
+  o.f = std::move(f);
   std::vector<std::pair<detail::Point, int>> items;
   items.reserve(n);
   for (std::size_t i = 0; i < n; ++i)

@@ -96,10 +96,11 @@ std::vector<double> shortest_edges(const Domain& domain) {
 }
 
 // Moving vertices that would leave the domain or come closer to another
-// vertex than min_distance_ratio times their shortest edge.
+// vertex than min_distance_ratio times their shortest edge; `located`
+// receives where the others' new positions fall in the domain.
 std::vector<char> stray_vertices(const Domain& domain, const std::vector<Vec3>& positions,
                                  const std::vector<char>& moving, const std::vector<double>& shortest,
-                                 double min_distance_ratio) {
+                                 double min_distance_ratio, std::vector<Location>& located) {
   const std::size_t n = positions.size();
   std::vector<char> stray(n, 0);
   const detail::NearestNeighbors nearest(positions);
@@ -110,10 +111,28 @@ std::vector<char> stray_vertices(const Domain& domain, const std::vector<Vec3>& 
           (positions[u] - positions[v]).norm() < min_distance_ratio * shortest[v])
         stray[v] = 1;
   });
+  located.assign(n, Location());
   for (std::size_t v = 0; v < n; ++v)  // serial: point location is not thread-safe
-    if (moving[v] && !stray[v] && domain.locate(positions[v], static_cast<int>(v)).tet < 0)
-      stray[v] = 1;
+    if (moving[v] && !stray[v]) {
+      located[v] = domain.locate(positions[v], static_cast<int>(v));
+      if (located[v].tet < 0) stray[v] = 1;
+    }
   return stray;
+}
+
+// f at the new positions: interpolated in the tets they were located in for
+// the moving vertices, unchanged for the others (§3.3, "Linear Solver").
+std::vector<double> carried_values(const Domain& domain, const std::vector<char>& moving,
+                                   const std::vector<Location>& located) {
+  std::vector<double> f = domain.f();
+  for (std::size_t v = 0; v < f.size(); ++v) {
+    if (!moving[v]) continue;
+    const auto& tet = domain.tets()[located[v].tet];
+    double value = 0;
+    for (int k = 0; k < 4; ++k) value += located[v].barycentric[k] * domain.f()[tet[k]];
+    f[v] = value;
+  }
+  return f;
 }
 
 // Moving vertices of the tets of `moved` that are flat: 6 vol <= 1e-12 l^3,
@@ -183,7 +202,9 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
       positions[v] = x.segment<3>(3 * v);
       moving[v] = !step.segment<3>(3 * v).isZero(0);
     }
-    if (send_back(stray_vertices(domain, positions, moving, shortest, options.min_distance_ratio)))
+    std::vector<Location> located;
+    if (send_back(stray_vertices(domain, positions, moving, shortest, options.min_distance_ratio,
+                                 located)))
       continue;
     // E(x0 + a s) - E(x0) = a^2 s.As + 2 a s.(A x0 - b).
     const double curvature = step.dot(energy.A * step);
@@ -197,7 +218,7 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
       break;
     }
     if (std::find(moving.begin(), moving.end(), 1) == moving.end()) break;
-    Domain moved = domain.moved(positions);
+    Domain moved = domain.moved(positions, carried_values(domain, moving, located));
     if (send_back(collapsed_vertices(moved, moving))) continue;
     for (Eigen::Index v = 0; v < n; ++v)
       report.max_displacement =
