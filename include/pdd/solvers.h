@@ -185,6 +185,9 @@ std::unique_ptr<ImplicitSolver> make_solver(const SolverOptions& options);
 struct LinearSystem {
   Eigen::SparseMatrix<double> A;
   Eigen::VectorXd b;
+  // SSD: its stiffness part, whose one-ring pattern orders the incomplete
+  // Cholesky preconditioner (docs/benchmarks.md); empty for none.
+  Eigen::SparseMatrix<double> ordering_pattern;
 };
 
 // The system of Eq. (15) that the SSD solver solves, for studies of its

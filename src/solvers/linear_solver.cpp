@@ -14,7 +14,34 @@ namespace pdd::detail {
 namespace {
 
 using Cholmod = Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>;
-using IncompleteCholesky = Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::AMDOrdering<int>>;
+// Eigen's AMD ordering, of the pattern given to LinearSolver::compute when
+// there is one (OrderingPattern below), else of the matrix itself. Eigen's
+// incomplete Cholesky default-constructs its ordering, so the pattern comes
+// through a thread-local pointer set for the time of one analysis.
+struct PatternAmdOrdering {
+  using PermutationType = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>;
+  static thread_local const SparseMatrix* pattern;
+  template <class MatrixType>
+  void operator()(const MatrixType& matrix, PermutationType& permutation) const {
+    Eigen::AMDOrdering<int> amd;
+    if (pattern != nullptr)
+      amd(*pattern, permutation);
+    else
+      amd(matrix, permutation);
+  }
+};
+thread_local const SparseMatrix* PatternAmdOrdering::pattern = nullptr;
+
+// Sets PatternAmdOrdering::pattern for its scope.
+class OrderingPattern {
+ public:
+  explicit OrderingPattern(const SparseMatrix* pattern) { PatternAmdOrdering::pattern = pattern; }
+  ~OrderingPattern() { PatternAmdOrdering::pattern = nullptr; }
+  OrderingPattern(const OrderingPattern&) = delete;
+  OrderingPattern& operator=(const OrderingPattern&) = delete;
+};
+
+using IncompleteCholesky = Eigen::IncompleteCholesky<double, Eigen::Lower, PatternAmdOrdering>;
 using CgIncompleteCholesky =
     Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, IncompleteCholesky>;
 using CgJacobi = Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper,
@@ -93,6 +120,7 @@ int run_cg(Cg& cg, const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::Vecto
 struct LinearSolver::Impl {
   LinearSolverOptions options;
   const SparseMatrix* A = nullptr;  // the caller's, see compute()
+  const SparseMatrix* ordering_pattern = nullptr;  // the caller's too, or none
   Pattern analyzed_pattern;         // CHOLMOD: the pattern of the analysis
   Cholmod cholmod;
   CgJacobi cg_jacobi;
@@ -110,7 +138,10 @@ struct LinearSolver::Impl {
       // smallest shift that worked so far, so that the systems of the next
       // iterations, much alike, break down less often.
       const SparseMatrix shifted = shifted_for_ic(*A, ic_shift);
-      cg_ic.analyzePattern(*A);
+      {
+        const OrderingPattern ordering(ordering_pattern);
+        cg_ic.analyzePattern(*A);
+      }
       cg_ic.preconditioner().factorize(shifted);
       if (cg_ic.preconditioner().info() != Eigen::Success)
         throw SolverError("incomplete Cholesky preconditioner failed (" +
@@ -169,10 +200,11 @@ LinearSolver::~LinearSolver() = default;
 LinearSolver::LinearSolver(LinearSolver&&) noexcept = default;
 LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
 
-void LinearSolver::compute(const SparseMatrix& A) {
+void LinearSolver::compute(const SparseMatrix& A, const SparseMatrix* ordering_pattern) {
   const auto start = Clock::now();
   Impl& d = *impl_;
   d.A = &A;
+  d.ordering_pattern = ordering_pattern;
   d.factorized = false;
   d.preconditioned = false;
   reused_analysis_ = false;

@@ -29,14 +29,15 @@ LinearSystem ssd_system(const Problem& p, const SsdOptions& options) {
 
   // Eq. (15) in units of l: f(p) is a length (1/l^2) and the Hessian an
   // inverse length (l^2); |T| is the volume of the domain, as in CT11.
-  SparseMatrix A = beta * weighted_stiffness(p.mesh, count);
+  SparseMatrix stiffness = weighted_stiffness(p.mesh, count);
+  SparseMatrix A = beta * stiffness;
   A += (options.alpha / (p.length * p.length * nx)) *
        gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
   if (options.gamma > 0) {
     const double gamma = options.gamma * p.length * p.length / tet_volumes(p.mesh).sum();
     A += gamma * hessian_energy(p.mesh);  // H^T M~_V^-1 H
   }
-  return {std::move(A), b};
+  return {std::move(A), b, std::move(stiffness)};
 }
 
 class SsdSolver final : public ImplicitSolver {
@@ -57,7 +58,7 @@ class SsdSolver final : public ImplicitSolver {
     const Eigen::VectorXd& b = system.b;
     stats_.assembly_seconds = seconds_since(start);
 
-    linear_.compute(A);
+    linear_.compute(A, &system.ordering_pattern);
     const auto solve_start = Clock::now();
     Eigen::VectorXd f = warm_start_vector(warm_start, p.mesh.vertices.size());
     linear_.solve(b, f);
