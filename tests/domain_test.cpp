@@ -105,9 +105,11 @@ TEST(Domain, InterpolationReproducesLinearFunctionsExactly) {
     }
     EXPECT_NEAR(sum, 1.0, 1e-12);
     EXPECT_NEAR(d.interpolate(q, f), linear(q), 1e-12);
+    EXPECT_NEAR(d.interpolate(loc, f), linear(q), 1e-12);
   }
   EXPECT_EQ(d.locate(Vec3(5, 5, 5)).tet, -1);
   EXPECT_THROW(d.interpolate(Vec3(5, 5, 5), f), std::out_of_range);
+  EXPECT_THROW(d.interpolate(d.locate(Vec3(5, 5, 5)), f), std::out_of_range);
 }
 
 TEST(Domain, LocatingFromANearbyVertexFindsTheSameTet) {

@@ -89,6 +89,8 @@ class Domain {
   // Value of the piecewise-linear interpolant of `values` at p; p must lie in
   // the domain (throws std::out_of_range otherwise).
   double interpolate(const Vec3& p, const std::vector<double>& values) const;
+  // The same at a point already located (at.tet >= 0).
+  double interpolate(const Location& at, const std::vector<double>& values) const;
 
   // Inserts points; each new vertex gets f interpolated in the tet that
   // contained it before insertion. Returns the indices of the new vertices

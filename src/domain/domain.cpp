@@ -79,6 +79,15 @@ double Domain::interpolate(const Vec3& p, const std::vector<double>& values) con
   return impl_->interpolate_in(c, p, values);
 }
 
+double Domain::interpolate(const Location& at, const std::vector<double>& values) const {
+  if (at.tet < 0 || at.tet >= static_cast<int>(impl_->tets.size()))
+    throw std::out_of_range("Domain::interpolate: the location is outside the domain");
+  const auto& tet = impl_->tets[at.tet];
+  double s = 0;
+  for (int i = 0; i < 4; ++i) s += at.barycentric[i] * values[tet[i]];
+  return s;
+}
+
 std::vector<int> Domain::insert(const std::vector<Vec3>& points, std::uint8_t flags) {
   Impl& d = *impl_;
   // Values are taken from the current interpolant before any insertion, so

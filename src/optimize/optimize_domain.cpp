@@ -125,13 +125,8 @@ std::vector<char> stray_vertices(const Domain& domain, const std::vector<Vec3>& 
 std::vector<double> carried_values(const Domain& domain, const std::vector<char>& moving,
                                    const std::vector<Location>& located) {
   std::vector<double> f = domain.f();
-  for (std::size_t v = 0; v < f.size(); ++v) {
-    if (!moving[v]) continue;
-    const auto& tet = domain.tets()[located[v].tet];
-    double value = 0;
-    for (int k = 0; k < 4; ++k) value += located[v].barycentric[k] * domain.f()[tet[k]];
-    f[v] = value;
-  }
+  for (std::size_t v = 0; v < f.size(); ++v)
+    if (moving[v]) f[v] = domain.interpolate(located[v], domain.f());
   return f;
 }
 
