@@ -25,7 +25,7 @@ struct OptimizerOptions {
   bool damping = true;           // damping term away from the boundary, Eqs. (9)-(10)
   double boundary_band = 0.02;   // vertices closer than this * r(T) to ∂T (and all hull and
                                  // sphere vertices) are held fixed: g_d = 1 as a hard constraint
-  double cg_tolerance = 1e-8;    // CG stops at this relative residual
+  double cg_tolerance = 1e-6;    // CG stops at this relative residual
   int cg_max_iterations = 2000;  // ... or after this many iterations
   double min_distance_ratio = 0.1;  // guard: a vertex may not come closer to another one than
                                     // this fraction of its shortest edge before the round

@@ -111,12 +111,14 @@ std::vector<char> stray_vertices(const Domain& domain, const std::vector<Vec3>& 
           (positions[u] - positions[v]).norm() < min_distance_ratio * shortest[v])
         stray[v] = 1;
   });
+  // Point location only reads the triangulation (CGAL's walk keeps its
+  // random state local), so the vertices are located concurrently.
   located.assign(n, Location());
-  for (std::size_t v = 0; v < n; ++v)  // serial: point location is not thread-safe
-    if (moving[v] && !stray[v]) {
-      located[v] = domain.locate(positions[v], static_cast<int>(v));
-      if (located[v].tet < 0) stray[v] = 1;
-    }
+  tbb::parallel_for(std::size_t(0), n, [&](std::size_t v) {
+    if (!moving[v] || stray[v]) return;
+    located[v] = domain.locate(positions[v], static_cast<int>(v));
+    if (located[v].tet < 0) stray[v] = 1;
+  });
   return stray;
 }
 
