@@ -119,7 +119,11 @@ void reconstruct(ReconstructArgs& args) {
   }
   if (!args.quiet) std::cout << statistics_table(result);
   std::cout << "pdd: wrote " << args.output << " (" << result.mesh.faces.size() << " triangles, "
-            << result.mesh.vertices.size() << " vertices)\n";
+            << result.mesh.vertices.size() << " vertices";
+  if (const SmallComponentsReport& r = result.iterations.back().small_components; r.components > 0)
+    std::cout << "; " << r.components << " small component" << (r.components == 1 ? "" : "s")
+              << " of " << r.faces << " triangles removed";
+  std::cout << ")\n";
 }
 
 }  // namespace
@@ -192,6 +196,12 @@ void add_reconstruct_command(CLI::App& app) {
                   "Target areas grow with the squared distance to the nearest input point "
                   "beyond 12 average spacings, up to this factor (holes, unseen sides; 1: off)")
       ->check(CLI::Range(1.0, 1e6))
+      ->capture_default_str();
+  cmd->add_option("--min-component-size", args->options.min_component_edges,
+                  "Remove the components of the output whose bounding-box diagonal is under "
+                  "this many mean edge lengths of the mesh: blobs below its resolution (0: keep "
+                  "all)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_flag("--no-cleanup", args->no_cleanup,
                 "Output the marching-tetrahedra isosurface as it is, without the edge flips "

@@ -169,7 +169,7 @@ TEST_F(CliTest, BadOptionValuesExitTwoLeavingNoFile) {
   write_points(path("in.ply"), test::sample_sphere(100));
   const std::vector<std::string> options = {"--solver octree", "--domain grid", "--target-edge -1",
                                             "--iterations 0", "--linear lu",
-                                            "--hole-coarsening 0.5",
+                                            "--hole-coarsening 0.5", "--min-component-size -2",
                                             "--stats '" + path("s.txt") + "'"};
   for (const std::string& option : options) {
     const Outcome run =

@@ -418,5 +418,86 @@ TEST(Figure2, UnbiasedEvenLayersGiveTheBestTriangles) {
   }
 }
 
+
+// A closed octahedron-subdivided sphere: 8 * 4^levels faces.
+TriangleMesh subdivided_sphere(int levels, double radius, const Vec3& center) {
+  TriangleMesh m;
+  m.vertices = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  m.faces = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<int, int>, int> middle;
+    auto mid = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      auto [it, added] = middle.try_emplace(key, static_cast<int>(m.vertices.size()));
+      if (added) m.vertices.push_back((m.vertices[a] + m.vertices[b]).normalized());
+      return it->second;
+    };
+    std::vector<std::array<int, 3>> faces;
+    for (const auto& f : m.faces) {
+      const int ab = mid(f[0], f[1]), bc = mid(f[1], f[2]), ca = mid(f[2], f[0]);
+      faces.insert(faces.end(), {{f[0], ab, ca}, {ab, f[1], bc}, {ca, bc, f[2]}, {ab, bc, ca}});
+    }
+    m.faces = std::move(faces);
+  }
+  for (Vec3& v : m.vertices) v = center + radius * v;
+  return m;
+}
+
+void append(TriangleMesh& to, const TriangleMesh& from) {
+  const int offset = static_cast<int>(to.vertices.size());
+  to.vertices.insert(to.vertices.end(), from.vertices.begin(), from.vertices.end());
+  for (const auto& f : from.faces) to.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+}
+
+double mean_edge_length(const TriangleMesh& m) {
+  double sum = 0;
+  for (const auto& f : m.faces)
+    for (int i = 0; i < 3; ++i) sum += (m.vertices[f[i]] - m.vertices[f[(i + 1) % 3]]).norm();
+  return sum / (3.0 * static_cast<double>(m.faces.size()));
+}
+
+TEST(SmallComponents, ABlobUnderTheMeshResolutionGoesAndTheRestStaysInOrder) {
+  const TriangleMesh sphere = subdivided_sphere(4, 1.0, Vec3::Zero());  // 2048 faces
+  const double edge = mean_edge_length(sphere);
+  TriangleMesh mesh = sphere;
+  append(mesh, subdivided_sphere(0, edge, Vec3(3, 0, 0)));  // an octahedron 2 edges wide
+  ASSERT_EQ(surface_topology(mesh).components, 2u);
+  const SmallComponentsReport r = remove_small_components(mesh, 4);
+  EXPECT_EQ(r.components, 1);
+  EXPECT_EQ(r.faces, 8);
+  ASSERT_EQ(mesh.vertices.size(), sphere.vertices.size());
+  EXPECT_EQ(mesh.faces, sphere.faces);
+  for (std::size_t v = 0; v < sphere.vertices.size(); ++v)
+    EXPECT_EQ(mesh.vertices[v], sphere.vertices[v]);
+}
+
+TEST(SmallComponents, ResolvedComponentsStayWhateverTheirSize) {
+  TriangleMesh mesh = subdivided_sphere(4, 1.0, Vec3::Zero());
+  const double edge = mean_edge_length(mesh);
+  // 512 faces, 6 edges of the big sphere wide.
+  append(mesh, subdivided_sphere(3, 3 * edge, Vec3(0, 0, 3)));
+  append(mesh, subdivided_sphere(4, 1.0, Vec3(5, 0, 0)));
+  const std::size_t faces = mesh.faces.size();
+  EXPECT_EQ(remove_small_components(mesh, 4).components, 0);
+  EXPECT_EQ(mesh.faces.size(), faces);
+  EXPECT_EQ(surface_topology(mesh).components, 3u);
+}
+
+TEST(SmallComponents, ZeroKeepsEverythingAndTheLargestAlwaysStays) {
+  TriangleMesh mesh = subdivided_sphere(1, 0.1, Vec3::Zero());  // 32 faces
+  append(mesh, subdivided_sphere(0, 0.1, Vec3(1, 0, 0)));       // 8 faces
+  TriangleMesh kept = mesh;
+  EXPECT_EQ(remove_small_components(kept, 0).components, 0);
+  EXPECT_EQ(kept.faces.size(), 40u);
+  // Both are under 1000 edges across: only the one with the most faces stays.
+  const SmallComponentsReport r = remove_small_components(mesh, 1000);
+  EXPECT_EQ(r.components, 1);
+  EXPECT_EQ(r.faces, 8);
+  EXPECT_EQ(mesh.faces.size(), 32u);
+  EXPECT_EQ(surface_topology(mesh).components, 1u);
+  EXPECT_THROW(remove_small_components(mesh, -1), std::invalid_argument);
+  EXPECT_THROW(remove_small_components(mesh, std::nan("")), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace pdd

@@ -128,6 +128,32 @@ TEST(Pipeline, StatisticsAreConsistent) {
   EXPECT_GT(r.iterations.back().vertices, r.iterations.front().vertices);
 }
 
+TEST(Pipeline, ABlobBelowTheResolutionIsRemovedAndCounted) {
+  // A speck of 40 points beside the sphere: too small for the target edge to
+  // resolve, it leaves a blob of a few triangles.
+  PointSet input = test::sample_sphere(1000);
+  const PointSet speck = test::sample_sphere(40, 0.04, Vec3(1.6, 0, 0));
+  input.points.insert(input.points.end(), speck.points.begin(), speck.points.end());
+  input.normals.insert(input.normals.end(), speck.normals.begin(), speck.normals.end());
+  ReconstructOptions o = fast_options(SolverKind::kSsd, 0.15);
+  o.cleanup = false;  // so that the two runs' faces differ by the blob's alone
+  o.min_component_edges = 0;
+  const Result all = reconstruct(input, o);
+  ASSERT_EQ(surface_topology(all.mesh).components, 2u);
+  EXPECT_EQ(all.iterations.back().small_components.components, 0);
+
+  o.min_component_edges = 4;
+  const Result r = reconstruct(input, o);
+  expect_closed_manifold(r.mesh, 0);
+  const IterationStats& last = r.iterations.back();
+  EXPECT_EQ(last.small_components.components, 1);
+  EXPECT_EQ(static_cast<std::size_t>(last.small_components.faces) + r.mesh.faces.size(),
+            all.mesh.faces.size());
+  EXPECT_EQ(last.triangles, r.mesh.faces.size());
+  EXPECT_EQ(last.isovertices, r.mesh.vertices.size());
+  for (const Vec3& v : r.mesh.vertices) EXPECT_LT(v.norm(), 1.2);
+}
+
 TEST(Pipeline, CancellingStopsCleanly) {
   const PointSet input = test::sample_sphere(800);
   ReconstructOptions o = fast_options(SolverKind::kSsd, 0.15);
@@ -242,6 +268,9 @@ TEST(Pipeline, RejectsBadOptions) {
   EXPECT_THROW(reconstruct(input, o), InputError);
   o = ReconstructOptions();
   o.optimizer_rounds_before_refining = -1;
+  EXPECT_THROW(reconstruct(input, o), InputError);
+  o = ReconstructOptions();
+  o.min_component_edges = -1;
   EXPECT_THROW(reconstruct(input, o), InputError);
   EXPECT_THROW(parse_domain_strategy("quadtree"), InputError);
   EXPECT_THROW(parse_sizing_kind("curvy"), InputError);

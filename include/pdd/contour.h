@@ -41,6 +41,22 @@ struct IsoSurface {
 IsoSurface marching_tetrahedra(const TetMesh& mesh, const std::vector<double>& f,
                                double isovalue = 0.0);
 
+struct SmallComponentsReport {
+  int components = 0;  // components removed
+  int faces = 0;       // their triangles
+};
+
+// Removes the connected components (through shared vertices) whose
+// bounding-box diagonal is under min_edges times the mean edge length of the
+// whole mesh: blobs of a few triangles, below the resolution the mesh has,
+// that f leaves where it dips under zero between the samples of a sparse or
+// noisy input (docs/benchmarks.md, "Small components"). The component with
+// the most faces always stays. Not in the paper. The vertices of the removed
+// components go with them, the others keep their order; min_edges = 0 keeps
+// everything.
+// Throws std::invalid_argument if min_edges is negative or not finite.
+SmallComponentsReport remove_small_components(TriangleMesh& mesh, double min_edges);
+
 struct CleanupOptions {
   double max_dihedral_degrees = 30;  // only where neighbouring triangles turn by at most this
   double needle_angle_degrees = 20;  // triangles with a smaller angle and a shortest edge at

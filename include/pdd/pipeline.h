@@ -82,6 +82,9 @@ struct ReconstructOptions {
   // a solve, with its solution, before the domain is refined (docs/benchmarks.md, "Loop order").
   int optimizer_rounds = 2;
   int optimizer_rounds_before_refining = 1;
+  double min_component_edges = 4;  // components of the final isosurface smaller than this many
+                                   // mean edge lengths across are removed (contour.h,
+                                   // remove_small_components); 0: all kept
   bool cleanup = true;         // flips and needle collapses on the final isosurface (contour.h);
                                // not part of the paper, docs/benchmarks.md "Isosurface clean-up"
   CleanupOptions cleanup_options;
@@ -119,15 +122,17 @@ struct IterationStats {
   double mean_min_angle = 0;     // of the isosurface's triangles, degrees
   double fraction_below_30 = 0;  // of the isosurface's triangles
   double seconds_solve = 0, seconds_optimize = 0, seconds_refine = 0, seconds_contour = 0;
-  // The final iteration only, when ReconstructOptions::cleanup is on: its
-  // triangle counts and angles above are those of the cleaned mesh.
+  // The final iteration only: the small components removed and, when
+  // ReconstructOptions::cleanup is on, the clean-up; its isovertex and
+  // triangle counts and angles above are those of the mesh returned.
+  SmallComponentsReport small_components;
   CleanupReport cleanup;
   double seconds_cleanup = 0;
 };
 
 struct Result {
-  TriangleMesh mesh;  // the isosurface of the final solve, outward-facing (cleaned up unless
-                      // ReconstructOptions::cleanup is off)
+  TriangleMesh mesh;  // the isosurface of the final solve, outward-facing, without its small
+                      // components, cleaned up unless ReconstructOptions::cleanup is off
   Domain domain;      // the final domain, f = the final solution
   std::vector<IterationStats> iterations;  // the last entry is the final solve
   double seconds = 0;

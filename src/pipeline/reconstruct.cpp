@@ -11,6 +11,7 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cctype>
 #include <chrono>
 #include <optional>
@@ -231,12 +232,15 @@ class Run {
     stats.seconds_optimize += seconds_since(t);
   }
 
-  // Flips and needle collapses on the final isosurface; the final
-  // iteration's triangle statistics then describe the mesh returned.
+  // The final isosurface without its small components, then with the flips
+  // and needle collapses of the clean-up; the final iteration's triangle
+  // statistics then describe the mesh returned.
   void clean_up(const Domain& domain, IterationStats& stats) {
     report("clean-up", stats.iteration, domain);
     const auto t = Clock::now();
-    stats.cleanup = cleanup_isosurface(result_.mesh, options_.cleanup_options);
+    stats.small_components = remove_small_components(result_.mesh, options_.min_component_edges);
+    if (options_.cleanup)
+      stats.cleanup = cleanup_isosurface(result_.mesh, options_.cleanup_options);
     stats.seconds_cleanup = seconds_since(t);
     stats.isovertices = result_.mesh.vertices.size();
     stats.triangles = result_.mesh.faces.size();
@@ -278,7 +282,7 @@ class Run {
   Result finish_with(Domain domain, IterationStats stats) {
     result_.iterations.push_back(std::move(stats));
     result_.mesh = std::move(contour_.mesh);
-    if (options_.cleanup) clean_up(domain, result_.iterations.back());
+    clean_up(domain, result_.iterations.back());
     result_.domain = std::move(domain);
     result_.seconds = seconds_since(start_);
     return std::move(result_);
@@ -332,6 +336,9 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
                      std::to_string(options.optimizer_rounds_before_refining));
   if (options.threads < 0)
     throw InputError("reconstruct: threads must be >= 0, got " + std::to_string(options.threads));
+  if (!(options.min_component_edges >= 0) || !std::isfinite(options.min_component_edges))
+    throw InputError("reconstruct: the smallest component size must be >= 0 edge lengths, got " +
+                     std::to_string(options.min_component_edges));
   std::optional<tbb::global_control> threads;
   if (options.threads > 0)
     threads.emplace(tbb::global_control::max_allowed_parallelism,

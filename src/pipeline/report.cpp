@@ -51,6 +51,8 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
         << ", \"refine\": " << number(s.seconds_refine)
         << ", \"contour\": " << number(s.seconds_contour)
         << ", \"cleanup\": " << number(s.seconds_cleanup) << "}"
+        << ", \"removed_components\": " << s.small_components.components
+        << ", \"removed_component_faces\": " << s.small_components.faces
         << ", \"cleanup_flips\": " << s.cleanup.flips
         << ", \"cleanup_collapses\": " << s.cleanup.collapses << "}";
   }
@@ -70,6 +72,12 @@ std::string statistics_table(const Result& result) {
                   s.iteration, s.vertices, s.vertices_near_isosurface, s.parsimony, s.triangles,
                   s.solver.residual, s.mean_min_angle, 100 * s.fraction_below_30, s.seconds_solve,
                   s.seconds_optimize, s.seconds_refine, s.seconds_contour);
+    out << line;
+  }
+  if (!result.iterations.empty() && result.iterations.back().small_components.components > 0) {
+    const SmallComponentsReport& r = result.iterations.back().small_components;
+    std::snprintf(line, sizeof line, "removed %d small component%s (%d triangles)\n", r.components,
+                  r.components == 1 ? "" : "s", r.faces);
     out << line;
   }
   std::snprintf(line, sizeof line, "total %.2f s\n", result.seconds);
