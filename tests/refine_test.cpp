@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -213,14 +215,23 @@ TEST(Sizing, AdaptiveIsDenserWhereCurvatureIsHigher) {
   EXPECT_LT(rho, -0.5);
 }
 
-TEST(Sizing, DefaultEdgeIsTheSpacingCappedByTheDiagonal) {
-  // Unit sphere: bounding-box diagonal 2 sqrt(3), so the cap is 0.0346.
+TEST(Sizing, DefaultEdgeIsTheSpacingUpToTheCapAndFinerBeyond) {
+  // Unit sphere: bounding-box diagonal 2 sqrt(3), so the cap c is 0.0346.
   const double cap = 0.01 * 2 * std::sqrt(3.0);
-  const PointSet dense = test::sample_sphere(20000), sparse = test::sample_sphere(300);
+  const PointSet dense = test::sample_sphere(20000), thin = test::sample_sphere(6500),
+                 sparse = test::sample_sphere(300);
   EXPECT_LT(average_spacing(dense), cap);
   EXPECT_DOUBLE_EQ(default_target_edge(dense), average_spacing(dense));
-  EXPECT_GT(average_spacing(sparse), cap);
-  EXPECT_NEAR(default_target_edge(sparse), cap, 0.01 * cap);  // 300 samples nearly fill the box
+  // Spacing between c and c / 0.7: c^2 / s, under the cap (c of the samples' own box).
+  Eigen::AlignedBox3d box;
+  for (const Vec3& p : thin.points) box.extend(p);
+  const double c = 0.01 * box.diagonal().norm(), s = average_spacing(thin);
+  ASSERT_GT(s, c);
+  ASSERT_LT(s, c / 0.7);
+  EXPECT_NEAR(default_target_edge(thin), c * c / s, 1e-12);
+  // Sparser: 0.7 c (300 samples nearly fill the box, so c is that of the sphere).
+  EXPECT_GT(average_spacing(sparse), cap / 0.7);
+  EXPECT_NEAR(default_target_edge(sparse), 0.7 * cap, 0.01 * cap);
   EXPECT_DOUBLE_EQ(default_target_area(sparse), area_for_edge_length(default_target_edge(sparse)));
 }
 

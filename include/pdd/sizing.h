@@ -27,10 +27,13 @@ double area_for_edge_length(double h);
 double average_spacing(const PointSet& input, int k = 6);
 
 // The default uniform target: triangles whose edge is the input's average
-// spacing, so that the output follows the input's resolution, but at most 1 %
-// of the bounding box's diagonal, so that a sparse input still gets a usable
-// mesh (docs/benchmarks.md: 2k points on the bunny give 10k triangles at
-// their spacing, 36k at the cap, and a third lower distances).
+// spacing s, so that the output follows the input's resolution, as long as s
+// is at most c = 1 % of the bounding box's diagonal. A sparser input gets
+// max(0.7 c, c^2 / s), finer the sparser it is: its samples are too far apart
+// to show its thin parts, and a wall 3 target edges thick came out with a
+// tunnel (docs/benchmarks.md, "Sparse inputs": 2k points on the fandisk,
+// genus 1 for 3 seeds in 10 at c, none at 0.7 c; 2k points on the bunny give
+// 10k triangles at their spacing, 37k at c, 70k at 0.7 c).
 double default_target_area(const PointSet& input);
 double default_target_edge(const PointSet& input);
 

@@ -160,7 +160,11 @@ double average_spacing(const PointSet& input, int k) {
 double default_target_edge(const PointSet& input) {
   Eigen::AlignedBox3d box;
   for (const Vec3& p : input.points) box.extend(p);
-  return std::min(average_spacing(input), 0.01 * box.diagonal().norm());
+  const double spacing = average_spacing(input);
+  const double cap = 0.01 * box.diagonal().norm();
+  if (spacing <= cap) return spacing;
+  // Sparser than the cap: the finer, relative to the spacing, the sparser the input.
+  return std::max(0.7 * cap, cap * cap / spacing);
 }
 
 double default_target_area(const PointSet& input) {
