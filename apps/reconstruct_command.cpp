@@ -162,7 +162,8 @@ void add_reconstruct_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--target-edge", args->options.target_edge_length,
                   "Uniform sizing: target edge length of the output triangles "
-                  "(default: the input's average spacing, at most 1% of its bounding-box diagonal)")
+                  "(default: the input's average spacing s while s is at most c = 1% of its "
+                  "bounding-box diagonal, max(0.7 c, c^2 / s) for sparser inputs)")
       ->check(greater_than(0));
   cmd->add_option("--target-area", args->options.target_area,
                   "Uniform sizing: target isofacet area (overrides --target-edge)")

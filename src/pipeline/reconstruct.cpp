@@ -11,9 +11,9 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <optional>
 #include <random>
 
