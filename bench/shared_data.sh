@@ -83,6 +83,7 @@ fmt() { if [ "$2" = null ] || [ -z "$2" ]; then printf -- "–"; else awk -v f="
 yes_no() { [ "$1" = true ] && printf yes || printf no; }
 
 rows=()
+stages=()
 failed=0
 # A row for a run that failed: the reason in the second column, the others empty.
 fail() {
@@ -173,6 +174,18 @@ for input in "${inputs[@]}"; do
   fi
   [ "$genus" = null ] && genus="–"
   rows+=("| $base | $seconds | $peak_mb | $faces | $chamfer | $hausdorff | $fscore | $angle | $below20 | $(yes_no "$closed")/$(yes_no "$manifold") | $components | $genus | $topology |")
+  stats="$details/$base.stats.json"
+  if [ $stats_flag = 1 ] && [ -f "$stats" ]; then
+    stages+=("$(jq -r '
+      def total(f): [.iterations[] | f] | add;
+      def s: . * 100 | round / 100;
+      "| \(input_filename | split("/") | last | rtrimstr(".stats.json")) | \(.seconds | s) | " +
+      "\(total(.seconds.solve_assembly) | s) | \(total(.seconds.solve_factorize) | s) | " +
+      "\(total(.seconds.solve_linear) | s) | \(total(.seconds.optimize) | s) | " +
+      "\(total(.seconds.refine) | s) | \(total(.seconds.contour) | s) | " +
+      "\(total(.seconds.cleanup) | s) | \(.iterations | length) | \(.vertices) | " +
+      "\(total(.solver_iterations)) |"' "$stats")")
+  fi
 done
 
 {
@@ -199,6 +212,16 @@ done
   if [ $runs_20k -gt 0 ]; then
     echo "Over the $runs_20k inputs drawn from 20k samples (all but sparse and the kitten): mean time" \
       "$(awk -v s="$sum_time_20k" -v n="$runs_20k" 'BEGIN { printf "%.2f", s / n }') s, largest peak memory $max_peak_20k MB."
+  fi
+  if [ ${#stages[@]} -gt 0 ]; then
+    echo
+    echo "Seconds per stage, summed over the iterations (\`--stats\`): the solves' assembly, factorization"
+    echo "(CHOLMOD, incomplete Cholesky) and linear solve (CG / triangular solves), the optimizer, the"
+    echo "refiner, marching tetrahedra, the final clean-up; iterations, final domain vertices, CG iterations."
+    echo
+    echo "| input | total | solve: assembly | solve: factorize | solve: linear | optimize | refine | contour | clean-up | iterations | final vertices | CG iterations |"
+    echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
+    printf '%s\n' "${stages[@]}"
   fi
 } >"$table"
 cat "$table"

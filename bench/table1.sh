@@ -180,7 +180,7 @@ for scan in "${scans[@]}"; do
   done
 
   section="$(
-    echo "### $name: ${points} points; $( [ -n "$edge_ratio" ] && echo "target edge $edge_ratio x the average spacing $(printf '%.4g' "$spacing") = $(printf '%.4g' "$edge")" || echo "pdd's default sizing (target edge = the average spacing $(printf '%.4g' "$spacing") capped at 1 % of the diagonal = $(printf '%.4g' "$edge"))" ); reference layers $(printf '%.4g' "$reference_edge") apart"
+    echo "### $name: ${points} points; $( [ -n "$edge_ratio" ] && echo "target edge $edge_ratio x the average spacing $(printf '%.4g' "$spacing") = $(printf '%.4g' "$edge")" || echo "pdd's default sizing (the average spacing $(printf '%.4g' "$spacing"), or finer when it is over 1 % of the diagonal: target edge $(printf '%.4g' "$edge"))" ); reference layers $(printf '%.4g' "$reference_edge") apart"
     if [ -n "$partial" ]; then
       echo
       echo "A partial scan: the first five distances compare the scanned parts (faces whose centroid is within"
