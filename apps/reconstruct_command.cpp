@@ -202,7 +202,7 @@ void add_reconstruct_command(CLI::App& app) {
                   "Remove the components of the output whose bounding-box diagonal is under "
                   "this many mean edge lengths of the mesh: blobs below its resolution (0: keep "
                   "all)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(at_least(0))
       ->capture_default_str();
   cmd->add_flag("--no-cleanup", args->no_cleanup,
                 "Output the marching-tetrahedra isosurface as it is, without the edge flips "
