@@ -33,7 +33,7 @@ double average_spacing(const PointSet& input, int k = 6);
 // to show its thin parts, and a wall 3 target edges thick came out with a
 // tunnel (docs/benchmarks.md, "Sparse inputs": 2k points on the fandisk,
 // genus 1 for 3 seeds in 10 at c, none at 0.7 c; 2k points on the bunny give
-// 10k triangles at their spacing, 37k at c, 70k at 0.7 c).
+// 10k triangles at their spacing, 37k at c, 77k at 0.7 c).
 double default_target_area(const PointSet& input);
 double default_target_edge(const PointSet& input);
 
