@@ -137,6 +137,12 @@ void add_reconstruct_command(CLI::App& app) {
   cmd->add_option("--solver", args->solver, "Implicit solver (§3.5)")
       ->check(CLI::IsMember({"ssd", "poisson", "spectral"}))
       ->capture_default_str();
+  cmd->add_option("--value-weight", args->options.solver.ssd.alpha,
+                  "SSD: weight alpha of f(p) = 0 at the samples (Eq. 15); larger follows the "
+                  "points more closely, smaller smooths their noise (default: from the input's "
+                  "estimated noise sigma, 0.035 / (sigma / l)^2 up to 6e4, l the bounding box's "
+                  "largest side)")
+      ->check(greater_than(0));
   cmd->add_option("--linear", args->linear,
                   "Linear solves: auto (SSD, spectral: CG from the previous solution, CHOLMOD "
                   "where there is none; Poisson: CG), cholmod (always direct: about as fast, "

@@ -2,6 +2,7 @@
 #include <pdd/isofacet.h>
 #include <pdd/pipeline.h>
 #include <pdd/quality.h>
+#include <pdd/solvers.h>
 
 #include <gtest/gtest.h>
 
@@ -135,6 +136,55 @@ TEST(Pipeline, StatisticsAreConsistent) {
   EXPECT_EQ(last.vertices, r.domain.num_vertices());
   // The domain grows while it refines.
   EXPECT_GT(r.iterations.back().vertices, r.iterations.front().vertices);
+}
+
+// Mean distance of the output's vertices to the unit sphere.
+double sphere_error(const Result& r) {
+  return vertex_distances(r.mesh, [](const Vec3& p) { return std::abs(p.norm() - 1.0); }).mean;
+}
+
+TEST(Pipeline, TheValueWeightFollowsTheNoiseAndBeatsAFixedOne) {
+  // Clean samples: the noise estimate is about 0, alpha is at its cap, and
+  // the surface lies closer to the truth than with PoissonRecon's weight
+  // (4000 in our units).
+  const PointSet clean = test::sample_sphere(6000);
+  ReconstructOptions o = fast_options(SolverKind::kSsd, 0.06);
+  const Result automatic = reconstruct(clean, o);
+  EXPECT_EQ(automatic.noise, estimate_noise(clean));
+  for (const IterationStats& s : automatic.iterations)
+    EXPECT_EQ(s.solver.value_weight, kSsdMaxValueWeight);
+  o.solver.ssd.alpha = 4000;
+  const Result fixed = reconstruct(clean, o);
+  EXPECT_EQ(fixed.iterations.back().solver.value_weight, 4000);  // an explicit weight is kept
+  EXPECT_EQ(fixed.noise, 0);            // and no estimate is made
+  std::cout << "clean sphere: mean error " << sphere_error(automatic) << " (alpha "
+            << automatic.iterations.back().solver.value_weight << ") against " << sphere_error(fixed) << " (4000)\n";
+  // Measured 0.84 x: on a sphere most of the error is the linear elements'
+  // own; on the shared data's bunny, whose details the smoother fit rounds
+  // off, the cap halves it (docs/benchmarks.md, "The value weight").
+  EXPECT_LT(sphere_error(automatic), 0.9 * sphere_error(fixed));
+
+  // With noise of 1 % of the diameter the weight drops, and the surface lies
+  // closer to the truth than with the clean inputs' weight (measured 0.15 x).
+  PointSet noisy = clean;
+  test::add_noise(noisy, 0.02, 3);
+  o.solver.ssd.alpha = 0;
+  const Result smoothed = reconstruct(noisy, o);
+  const double alpha = smoothed.iterations.back().solver.value_weight;
+  EXPECT_EQ(smoothed.noise, estimate_noise(noisy));
+  // l is about 2 (the noise widens the box a little)
+  EXPECT_NEAR(alpha, ssd_value_weight(smoothed.noise, 2.0), 0.1 * alpha);
+  EXPECT_LT(alpha, 0.1 * kSsdMaxValueWeight);
+  o.solver.ssd.alpha = kSsdMaxValueWeight;
+  const Result tight = reconstruct(noisy, o);
+  std::cout << "noisy sphere: mean error " << sphere_error(smoothed) << " (alpha "
+            << alpha << ") against " << sphere_error(tight) << " (the cap)\n";
+  EXPECT_LT(sphere_error(smoothed), 0.8 * sphere_error(tight));
+
+  o.solver.kind = SolverKind::kPoisson;  // Poisson has its own screening weight
+  const Result poisson = reconstruct(clean, o);
+  EXPECT_EQ(poisson.noise, 0);
+  EXPECT_EQ(poisson.iterations.back().solver.value_weight, 0);
 }
 
 TEST(Pipeline, ABlobBelowTheResolutionIsRemovedAndCounted) {

@@ -135,6 +135,8 @@ struct Result {
                       // components, cleaned up unless ReconstructOptions::cleanup is off
   Domain domain;      // the final domain, f = the final solution
   std::vector<IterationStats> iterations;  // the last entry is the final solve
+  double noise = 0;  // SSD with the automatic value weight: estimate_noise(points) (solvers.h);
+                     // otherwise 0. The weight of each solve is in its SolverStats.
   double seconds = 0;
   bool cancelled = false;  // the progress callback returned false: mesh is empty
 };

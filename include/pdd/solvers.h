@@ -92,18 +92,40 @@ struct PoissonOptions {
 //     = beta/|X| G^T S^T N,
 // with |T| the volume of the domain.
 struct SsdOptions {
-  // The ratios are those of the SSD implementation in PoissonRecon (SSDRecon
-  // defaults --valueWeight 4, --gradientWeight 0.001, --biLapWeight 1e-5),
-  // divided by the gradient weight (its input is scaled into a unit cube as
-  // ours is into units of l).
-  double alpha = 4000.0;  // f(p) = 0 at the samples
-  double beta = 1.0;      // grad f(p) = n_p
-  double gamma = 0.001;   // Hessian smoothness; larger is smoother (measured on the ellipsoid
-                          // of the tests, l = 2: gamma = 1 moves the zero set by up to 0.03,
-                          // 0.01 by up to 0.003). On the shared data (docs/benchmarks.md),
-                          // 0.001 against 0.01: bunny_clean Chamfer-L1 0.22e-3 vs 0.86e-3,
-                          // bunny_sparse 1.02e-3 vs 1.42e-3, bunny_noise10 1.54e-3 vs 1.48e-3
+  double alpha = 0;     // f(p) = 0 at the samples; 0: ssd_value_weight, from the input's noise
+  double noise = -1;    // sigma of the automatic alpha; < 0: estimate_noise(points) at each solve
+                        // (reconstruct() estimates it once)
+  double beta = 1.0;    // grad f(p) = n_p
+  double gamma = 0.001;  // Hessian smoothness; larger is smoother (measured on the ellipsoid
+                         // of the tests, l = 2: gamma = 1 moves the zero set by up to 0.03,
+                         // 0.01 by up to 0.003). On the shared data (docs/benchmarks.md),
+                         // 0.001 against 0.01 (alpha = 4000): bunny_clean Chamfer-L1 0.22e-3
+                         // vs 0.86e-3, bunny_sparse 1.02e-3 vs 1.42e-3, bunny_noise10 1.54e-3
+                         // vs 1.48e-3
 };
+
+// The input's noise sigma, in its units: the lower quartile over the points
+// of the RMS residual of a cubic height field fitted to each point's
+// `neighbors` nearest neighbours (in their principal frame). The lower
+// quartile, so that sharp edges and the curvature of sparsely sampled parts,
+// whose fits leave larger residuals, do not count as noise. 0 when the input
+// has fewer points than that.
+double estimate_noise(const PointSet& points, int neighbors = 20);
+
+// SSD's value weight alpha (Eq. 15) for samples of noise sigma whose largest
+// bounding-box side is l:
+//   alpha = min(K l^2 / sigma^2, kSsdMaxValueWeight),
+// the weight of a least-squares fit to data of variance sigma^2. Not in the
+// paper, whose SSD takes PoissonRecon's fixed weights (4000 in our units):
+// too smooth for clean inputs, whose distance to the truth it doubles, and
+// too tight for 0.5-1 % noise (docs/benchmarks.md, "The value weight").
+double ssd_value_weight(double noise, double length);
+inline constexpr double kSsdValueWeightNoiseScale = 0.035;  // K: the best alpha at 0.5 % and 1 %
+                                                            // noise on the shared data
+// The cap, for clean inputs. 1e5 is 7 % closer to the truth than 6e4 on the shared data's clean
+// inputs, but opens a handle through the fandisk's plate, 1.5 sample spacings thick in its 2k
+// samples, on 4 seeds of 10 (6e4 and 4e4: on none of 10).
+inline constexpr double kSsdMaxValueWeight = 6e4;
 
 // Spectral [ACTD07], Eqs. (16)-(17): the eigenvector of the largest
 // eigenvalue of
@@ -159,6 +181,7 @@ struct SolverStats {
   double median_shift = 0;       // the constant subtracted from f (0 when not shifted)
   double eigenvalue = 0;         // spectral: lambda
   double kernel_size = 0;        // Poisson: the kernel standard deviation used, in input units
+  double value_weight = 0;       // SSD: the alpha solved with (ssd_value_weight when automatic)
 };
 
 class ImplicitSolver {

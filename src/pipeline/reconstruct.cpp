@@ -8,6 +8,7 @@
 #include "pipeline/octree_domain.h"
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -344,14 +345,27 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
     threads.emplace(tbb::global_control::max_allowed_parallelism,
                     static_cast<std::size_t>(options.threads));
   const EigenThreads eigen_threads(options.threads);
-  Run run(points, options);
+  // The input's noise for SSD's automatic value weight, once for all the solves.
+  ReconstructOptions resolved = options;
+  SsdOptions& ssd = resolved.solver.ssd;
+  const auto start = Clock::now();
+  if (resolved.solver.kind == SolverKind::kSsd && ssd.alpha == 0 && ssd.noise < 0)
+    ssd.noise = estimate_noise(points);
+  const double seconds_noise = seconds_since(start);
+  Run run(points, resolved);
   try {
-    switch (options.strategy) {
-      case DomainStrategy::kProgressive: return run.progressive();
-      case DomainStrategy::kDirect: return run.direct();
-      case DomainStrategy::kInput: return run.input();
-      case DomainStrategy::kOctree: return run.octree();
-    }
+    Result result = [&] {
+      switch (resolved.strategy) {
+        case DomainStrategy::kProgressive: return run.progressive();
+        case DomainStrategy::kDirect: return run.direct();
+        case DomainStrategy::kInput: return run.input();
+        case DomainStrategy::kOctree: return run.octree();
+      }
+      throw InputError("reconstruct: unknown domain strategy");
+    }();
+    result.noise = std::max(0.0, ssd.noise);
+    result.seconds += seconds_noise;
+    return result;
   } catch (const Cancelled&) {
   }
   Result cancelled;

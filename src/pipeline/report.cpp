@@ -22,6 +22,8 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
   out << "{\n  \"strategy\": \"" << to_string(options.strategy) << "\",\n"
       << "  \"solver\": \"" << to_string(options.solver.kind) << "\",\n"
       << "  \"seed\": " << options.seed << ",\n"
+      << "  \"noise\": " << number(result.noise) << ",\n"
+
       << "  \"seconds\": " << number(result.seconds) << ",\n"
       << "  \"vertices\": " << result.domain.num_vertices() << ",\n"
       << "  \"triangles\": " << result.mesh.faces.size() << ",\n"
@@ -38,6 +40,7 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
         << ", \"triangles\": " << s.triangles << ", \"solver_method\": \"" << s.solver.method
         << "\", \"solver_iterations\": " << s.solver.iterations
         << ", \"solver_residual\": " << number(s.solver.residual)
+        << ", \"ssd_alpha\": " << number(s.solver.value_weight)
         << ", \"optimizer_cg_iterations\": " << s.optimizer_cg_iterations
         << ", \"rejected_moves\": " << s.rejected_moves << ", \"trisected\": " << s.trisected
         << ", \"bisected\": " << s.bisected << ", \"inserted_points\": " << s.inserted_points
@@ -78,6 +81,11 @@ std::string statistics_table(const Result& result) {
     const SmallComponentsReport& r = result.iterations.back().small_components;
     std::snprintf(line, sizeof line, "removed %d small component%s (%d triangles)\n", r.components,
                   r.components == 1 ? "" : "s", r.faces);
+    out << line;
+  }
+  if (!result.iterations.empty() && result.iterations.back().solver.value_weight > 0) {
+    std::snprintf(line, sizeof line, "SSD value weight alpha %.4g in the final solve (noise estimate %.3g)\n",
+                  result.iterations.back().solver.value_weight, result.noise);
     out << line;
   }
   std::snprintf(line, sizeof line, "total %.2f s\n", result.seconds);

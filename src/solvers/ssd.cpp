@@ -10,6 +10,14 @@ namespace {
 
 const char* const kWhyNormals = "the SSD solver fits the gradient of f to oriented normals (Eq. 15)";
 
+// The options with alpha = 0 replaced by ssd_value_weight for the samples.
+SsdOptions resolved(SsdOptions options, const Problem& p, const PointSet& points) {
+  if (options.alpha > 0) return options;
+  const double noise = options.noise >= 0 ? options.noise : estimate_noise(points);
+  options.alpha = ssd_value_weight(noise, p.length);
+  return options;
+}
+
 // The system A f = b of Eq. (15) for a located problem.
 LinearSystem ssd_system(const Problem& p, const SsdOptions& options) {
   const double nx = static_cast<double>(p.num_points);
@@ -44,8 +52,8 @@ class SsdSolver final : public ImplicitSolver {
  public:
   SsdSolver(const SsdOptions& options, const LinearSolverOptions& linear)
       : options_(options), linear_(linear, resolve_route(linear, SolverKind::kSsd)) {
-    if (!(options.alpha > 0) || !(options.beta > 0) || !(options.gamma >= 0))
-      throw InputError("SSD solver: alpha and beta must be > 0 and gamma >= 0");
+    if (!(options.alpha >= 0) || !(options.beta > 0) || !(options.gamma >= 0))
+      throw InputError("SSD solver: alpha must be >= 0 (0: from the noise), beta > 0 and gamma >= 0");
   }
 
   std::vector<double> solve(const Domain& domain, const PointSet& points,
@@ -53,7 +61,8 @@ class SsdSolver final : public ImplicitSolver {
     const auto start = Clock::now();
     stats_ = SolverStats();
     const Problem p = make_problem(domain, points, "SSD solver", kWhyNormals);
-    const LinearSystem system = ssd_system(p, options_);
+    const SsdOptions options = resolved(options_, p, points);
+    const LinearSystem system = ssd_system(p, options);
     const SparseMatrix& A = system.A;
     const Eigen::VectorXd& b = system.b;
     stats_.assembly_seconds = seconds_since(start);
@@ -68,6 +77,7 @@ class SsdSolver final : public ImplicitSolver {
     stats_.num_vertices = p.mesh.vertices.size();
     stats_.num_points = p.num_points;
     stats_.nonzeros = static_cast<std::size_t>(A.nonZeros());
+    stats_.value_weight = options.alpha;
     return to_std(f);
   }
 
@@ -88,8 +98,8 @@ class SsdSolver final : public ImplicitSolver {
 namespace pdd {
 
 LinearSystem ssd_system(const Domain& domain, const PointSet& points, const SsdOptions& options) {
-  return detail::ssd_system(detail::make_problem(domain, points, "SSD system", detail::kWhyNormals),
-                            options);
+  const detail::Problem p = detail::make_problem(domain, points, "SSD system", detail::kWhyNormals);
+  return detail::ssd_system(p, detail::resolved(options, p, points));
 }
 
 }  // namespace pdd

@@ -1,0 +1,66 @@
+// The input's noise level and the SSD value weight chosen from it.
+#include <pdd/errors.h>
+#include <pdd/solvers.h>
+
+#include "common/nearest_neighbors.h"
+
+#include <Eigen/Dense>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace pdd {
+
+namespace {
+
+// The residual of one point's neighbourhood: RMS distance of the neighbours
+// to the cubic height field h(u, v) fitted to them in their principal frame,
+// over the degrees of freedom left (k - 10).
+double cubic_fit_residual(const std::vector<Vec3>& points, const std::vector<int>& neighbours) {
+  const int k = static_cast<int>(neighbours.size());
+  Vec3 centroid = Vec3::Zero();
+  for (int j : neighbours) centroid += points[j];
+  centroid /= k;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (int j : neighbours) covariance += (points[j] - centroid) * (points[j] - centroid).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> frame(covariance);
+  const Vec3 n = frame.eigenvectors().col(0);
+  const Vec3 u = frame.eigenvectors().col(2);
+  const Vec3 v = frame.eigenvectors().col(1);
+  Eigen::MatrixXd A(k, 10);
+  Eigen::VectorXd h(k);
+  for (int t = 0; t < k; ++t) {
+    const Vec3 d = points[neighbours[t]] - centroid;
+    const double x = d.dot(u), y = d.dot(v);
+    A.row(t) << x * x * x, x * x * y, x * y * y, y * y * y, x * x, x * y, y * y, x, y, 1;
+    h[t] = d.dot(n);
+  }
+  const Eigen::VectorXd coefficients = A.colPivHouseholderQr().solve(h);
+  return std::sqrt((A * coefficients - h).squaredNorm() / (k - 10));
+}
+
+}  // namespace
+
+double estimate_noise(const PointSet& points, int neighbors) {
+  if (neighbors < 11)
+    throw InputError("noise estimate: a cubic fit needs at least 11 neighbours, got " +
+                     std::to_string(neighbors));
+  if (static_cast<int>(points.size()) < neighbors) return 0;
+  const detail::NearestNeighbors knn(points.points);
+  std::vector<double> residual(points.size());
+  tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) {
+    residual[i] = cubic_fit_residual(points.points, knn.query(points.points[i], neighbors));
+  });
+  const auto quartile = residual.begin() + residual.size() / 4;
+  std::nth_element(residual.begin(), quartile, residual.end());
+  return *quartile;
+}
+
+double ssd_value_weight(double noise, double length) {
+  const double sigma = noise / length;
+  return std::min(kSsdValueWeightNoiseScale / (sigma * sigma), kSsdMaxValueWeight);
+}
+
+}  // namespace pdd
