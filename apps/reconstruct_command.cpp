@@ -191,7 +191,9 @@ void add_reconstruct_command(CLI::App& app) {
       ->check(greater_than(0))
       ->capture_default_str();
   cmd->add_option("--optimizer-rounds", args->options.optimizer_rounds,
-                  "Optimizer passes (§3.3) on each refined domain, before it is solved on")
+                  "Optimizer passes (§3.3) on each refined domain, before it is solved on (0 "
+                  "here and below leaves the refiner's slivers, on which SSD's system can lose "
+                  "definiteness and the solve fail, as §4.5 found)")
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
   cmd->add_option("--optimizer-rounds-before-refining",
