@@ -23,7 +23,6 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
       << "  \"solver\": \"" << to_string(options.solver.kind) << "\",\n"
       << "  \"seed\": " << options.seed << ",\n"
       << "  \"noise\": " << number(result.noise) << ",\n"
-
       << "  \"seconds\": " << number(result.seconds) << ",\n"
       << "  \"vertices\": " << result.domain.num_vertices() << ",\n"
       << "  \"triangles\": " << result.mesh.faces.size() << ",\n"
@@ -84,7 +83,8 @@ std::string statistics_table(const Result& result) {
     out << line;
   }
   if (!result.iterations.empty() && result.iterations.back().solver.value_weight > 0) {
-    std::snprintf(line, sizeof line, "SSD value weight alpha %.4g in the final solve (noise estimate %.3g)\n",
+    std::snprintf(line, sizeof line,
+                  "SSD value weight alpha %.4g in the final solve (noise estimate %.3g)\n",
                   result.iterations.back().solver.value_weight, result.noise);
     out << line;
   }

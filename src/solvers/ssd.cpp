@@ -53,7 +53,8 @@ class SsdSolver final : public ImplicitSolver {
   SsdSolver(const SsdOptions& options, const LinearSolverOptions& linear)
       : options_(options), linear_(linear, resolve_route(linear, SolverKind::kSsd)) {
     if (!(options.alpha >= 0) || !(options.beta > 0) || !(options.gamma >= 0))
-      throw InputError("SSD solver: alpha must be >= 0 (0: from the noise), beta > 0 and gamma >= 0");
+      throw InputError(
+          "SSD solver: alpha must be >= 0 (0: from the noise), beta > 0 and gamma >= 0");
   }
 
   std::vector<double> solve(const Domain& domain, const PointSet& points,
