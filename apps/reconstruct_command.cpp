@@ -15,6 +15,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "commands.h"
 #include "validators.h"
@@ -120,9 +121,12 @@ void reconstruct(ReconstructArgs& args) {
   if (!args.quiet) std::cout << statistics_table(result);
   std::cout << "pdd: wrote " << args.output << " (" << result.mesh.faces.size() << " triangles, "
             << result.mesh.vertices.size() << " vertices";
-  if (const SmallComponentsReport& r = result.iterations.back().small_components; r.components > 0)
-    std::cout << "; " << r.components << " small component" << (r.components == 1 ? "" : "s")
-              << " of " << r.faces << " triangles removed";
+  const IterationStats& last = result.iterations.back();
+  for (const auto& [r, kind] : {std::pair(last.small_components, "small"),
+                                std::pair(last.open_components, "open")})
+    if (r.components > 0)
+      std::cout << "; " << r.components << " " << kind << " component"
+                << (r.components == 1 ? "" : "s") << " of " << r.faces << " triangles removed";
   std::cout << ")\n";
 }
 
@@ -208,8 +212,8 @@ void add_reconstruct_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--min-component-size", args->options.min_component_edges,
                   "Remove the components of the output whose bounding-box diagonal is under "
-                  "this many mean edge lengths of the mesh: blobs below its resolution (0: keep "
-                  "all)")
+                  "this many mean edge lengths of the mesh (blobs below its resolution), and "
+                  "those but the largest that the domain's boundary cuts open (0: keep all)")
       ->check(at_least(0))
       ->capture_default_str();
   cmd->add_flag("--no-cleanup", args->no_cleanup,

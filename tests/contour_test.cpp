@@ -462,7 +462,7 @@ TEST(SmallComponents, ABlobUnderTheMeshResolutionGoesAndTheRestStaysInOrder) {
   TriangleMesh mesh = sphere;
   append(mesh, subdivided_sphere(0, edge, Vec3(3, 0, 0)));  // an octahedron 2 edges wide
   ASSERT_EQ(surface_topology(mesh).components, 2u);
-  const SmallComponentsReport r = remove_small_components(mesh, 4);
+  const RemovedComponents r = remove_small_components(mesh, 4);
   EXPECT_EQ(r.components, 1);
   EXPECT_EQ(r.faces, 8);
   ASSERT_EQ(mesh.vertices.size(), sphere.vertices.size());
@@ -490,13 +490,58 @@ TEST(SmallComponents, ZeroKeepsEverythingAndTheLargestAlwaysStays) {
   EXPECT_EQ(remove_small_components(kept, 0).components, 0);
   EXPECT_EQ(kept.faces.size(), 40u);
   // Both are under 1000 edges across: only the one with the most faces stays.
-  const SmallComponentsReport r = remove_small_components(mesh, 1000);
+  const RemovedComponents r = remove_small_components(mesh, 1000);
   EXPECT_EQ(r.components, 1);
   EXPECT_EQ(r.faces, 8);
   EXPECT_EQ(mesh.faces.size(), 32u);
   EXPECT_EQ(surface_topology(mesh).components, 1u);
   EXPECT_THROW(remove_small_components(mesh, -1), std::invalid_argument);
   EXPECT_THROW(remove_small_components(mesh, std::nan("")), std::invalid_argument);
+}
+
+// The faces of `m` on the side z > 0 of their centroid: an open cap.
+TriangleMesh upper_half(const TriangleMesh& m) {
+  TriangleMesh half = m;
+  half.faces.clear();
+  const double z = [&] {
+    double sum = 0;
+    for (const Vec3& v : m.vertices) sum += v.z();
+    return sum / static_cast<double>(m.vertices.size());
+  }();
+  for (const auto& f : m.faces)
+    if ((m.vertices[f[0]] + m.vertices[f[1]] + m.vertices[f[2]]).z() / 3 > z) half.faces.push_back(f);
+  return half;
+}
+
+TEST(OpenComponents, AnOpenPieceGoesAndClosedOnesStayInOrder) {
+  const TriangleMesh sphere = subdivided_sphere(3, 1.0, Vec3::Zero());  // 512 faces
+  TriangleMesh mesh = sphere;
+  // A closed octahedron stays, however small; an open cap of 256 faces goes.
+  append(mesh, subdivided_sphere(0, 0.1, Vec3(0, 0, 2)));
+  TriangleMesh cap = upper_half(subdivided_sphere(3, 0.9, Vec3(3, 0, 0)));
+  ASSERT_GT(surface_topology(cap).boundary_edges, 0u);
+  append(mesh, cap);
+  const std::size_t closed_faces = sphere.faces.size() + 8;
+  const RemovedComponents r = remove_open_components(mesh);
+  EXPECT_EQ(r.components, 1);
+  EXPECT_EQ(static_cast<std::size_t>(r.faces), cap.faces.size());
+  ASSERT_EQ(mesh.faces.size(), closed_faces);
+  for (std::size_t f = 0; f < sphere.faces.size(); ++f) EXPECT_EQ(mesh.faces[f], sphere.faces[f]);
+  const SurfaceTopology topo = surface_topology(mesh);
+  EXPECT_TRUE(topo.closed);
+  EXPECT_EQ(topo.components, 2u);
+}
+
+TEST(OpenComponents, TheLargestStaysEvenWhenOpen) {
+  // A one-view scan's surface can run into the domain's boundary: kept.
+  TriangleMesh mesh = upper_half(subdivided_sphere(3, 1.0, Vec3::Zero()));
+  append(mesh, upper_half(subdivided_sphere(1, 0.2, Vec3(3, 0, 0))));
+  const std::size_t largest = upper_half(subdivided_sphere(3, 1.0, Vec3::Zero())).faces.size();
+  EXPECT_EQ(remove_open_components(mesh).components, 1);
+  EXPECT_EQ(mesh.faces.size(), largest);
+  EXPECT_GT(surface_topology(mesh).boundary_edges, 0u);
+  TriangleMesh empty;
+  EXPECT_EQ(remove_open_components(empty).components, 0);
 }
 
 }  // namespace

@@ -83,8 +83,10 @@ struct ReconstructOptions {
   int optimizer_rounds = 2;
   int optimizer_rounds_before_refining = 1;
   double min_component_edges = 4;  // components of the final isosurface smaller than this many
-                                   // mean edge lengths across are removed (contour.h,
-                                   // remove_small_components); 0: all kept
+                                   // mean edge lengths across are removed, and so are those
+                                   // cut open by the domain's boundary but the largest
+                                   // (contour.h, remove_small_components and
+                                   // remove_open_components); 0: all kept
   bool cleanup = true;         // flips and needle collapses on the final isosurface (contour.h);
                                // not part of the paper, docs/benchmarks.md "Isosurface clean-up"
   CleanupOptions cleanup_options;
@@ -122,10 +124,11 @@ struct IterationStats {
   double mean_min_angle = 0;     // of the isosurface's triangles, degrees
   double fraction_below_30 = 0;  // of the isosurface's triangles
   double seconds_solve = 0, seconds_optimize = 0, seconds_refine = 0, seconds_contour = 0;
-  // The final iteration only: the small components removed and, when
-  // ReconstructOptions::cleanup is on, the clean-up; its isovertex and
+  // The final iteration only: the small and the open components removed and,
+  // when ReconstructOptions::cleanup is on, the clean-up; its isovertex and
   // triangle counts and angles above are those of the mesh returned.
-  SmallComponentsReport small_components;
+  RemovedComponents small_components;
+  RemovedComponents open_components;
   CleanupReport cleanup;
   double seconds_cleanup = 0;
 };

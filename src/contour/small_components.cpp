@@ -1,4 +1,5 @@
-// Removal of components below the output's resolution (contour.h).
+// Removal of stray components of the output (contour.h): those below its
+// resolution, and those cut open by the domain's boundary.
 #include <pdd/contour.h>
 
 #include <Eigen/Geometry>
@@ -8,6 +9,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pdd {
@@ -19,58 +21,96 @@ int root(std::vector<int>& parent, int v) {
   return v;
 }
 
+// The connected components of a mesh (through shared vertices): a root
+// vertex per vertex, and per root its number of faces.
+struct Components {
+  std::vector<int> root_of;  // per vertex
+  std::vector<int> faces;    // per root vertex; 0 for the others
+  int largest = -1;          // the root with the most faces (the first such)
+};
+
+Components components(const TriangleMesh& mesh) {
+  std::vector<int> parent(mesh.vertices.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const auto& f : mesh.faces)
+    for (int i = 0; i < 3; ++i) parent[root(parent, f[i])] = root(parent, f[(i + 1) % 3]);
+  Components c;
+  c.root_of.resize(parent.size());
+  for (std::size_t v = 0; v < parent.size(); ++v) c.root_of[v] = root(parent, static_cast<int>(v));
+  c.faces.assign(parent.size(), 0);
+  for (const auto& f : mesh.faces) ++c.faces[c.root_of[f[0]]];
+  c.largest = static_cast<int>(std::max_element(c.faces.begin(), c.faces.end()) - c.faces.begin());
+  return c;
+}
+
+// Drops the faces of the components whose root is marked, and the vertices
+// they leave unused; the others keep their order. Counts what went.
+RemovedComponents remove_marked(TriangleMesh& mesh, const Components& c,
+                                const std::vector<char>& marked) {
+  RemovedComponents report;
+  for (std::size_t r = 0; r < marked.size(); ++r)
+    if (marked[r]) {
+      ++report.components;
+      report.faces += c.faces[r];
+    }
+  if (report.components == 0) return report;
+  TriangleMesh kept;
+  std::vector<int> index(mesh.vertices.size(), -1);
+  for (const auto& f : mesh.faces)
+    if (!marked[c.root_of[f[0]]])
+      for (int v : f) index[v] = 0;
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    if (index[v] == 0) {
+      index[v] = static_cast<int>(kept.vertices.size());
+      kept.vertices.push_back(mesh.vertices[v]);
+    }
+  for (const auto& f : mesh.faces)
+    if (!marked[c.root_of[f[0]]]) kept.faces.push_back({index[f[0]], index[f[1]], index[f[2]]});
+  mesh = std::move(kept);
+  return report;
+}
+
 }  // namespace
 
-SmallComponentsReport remove_small_components(TriangleMesh& mesh, double min_edges) {
+RemovedComponents remove_small_components(TriangleMesh& mesh, double min_edges) {
   if (!(min_edges >= 0) || !std::isfinite(min_edges))
     throw std::invalid_argument("remove_small_components: min_edges must be >= 0, got " +
                                 std::to_string(min_edges));
-  SmallComponentsReport report;
-  if (min_edges == 0 || mesh.faces.empty()) return report;
-
+  if (min_edges == 0 || mesh.faces.empty()) return {};
   const auto& x = mesh.vertices;
-  std::vector<int> parent(x.size());
-  std::iota(parent.begin(), parent.end(), 0);
   double edge_sum = 0;
   for (const auto& f : mesh.faces)
-    for (int i = 0; i < 3; ++i) {
-      edge_sum += (x[f[i]] - x[f[(i + 1) % 3]]).norm();
-      parent[root(parent, f[i])] = root(parent, f[(i + 1) % 3]);
-    }
+    for (int i = 0; i < 3; ++i) edge_sum += (x[f[i]] - x[f[(i + 1) % 3]]).norm();
   const double min_diagonal = min_edges * edge_sum / (3.0 * static_cast<double>(mesh.faces.size()));
 
-  // Per root: its faces and bounding box.
-  std::vector<int> faces(x.size(), 0);
+  const Components c = components(mesh);
   std::vector<Eigen::AlignedBox3d> box(x.size());
-  for (const auto& f : mesh.faces) {
-    const int r = root(parent, f[0]);
-    ++faces[r];
-    for (int v : f) box[r].extend(x[v]);
-  }
-  const int largest = static_cast<int>(std::max_element(faces.begin(), faces.end()) - faces.begin());
+  for (const auto& f : mesh.faces)
+    for (int v : f) box[c.root_of[f[0]]].extend(x[v]);
   std::vector<char> small(x.size(), 0);
   for (std::size_t r = 0; r < x.size(); ++r)
-    if (faces[r] > 0 && static_cast<int>(r) != largest && box[r].diagonal().norm() < min_diagonal) {
-      small[r] = 1;
-      ++report.components;
-      report.faces += faces[r];
-    }
-  if (report.components == 0) return report;
+    small[r] = c.faces[r] > 0 && static_cast<int>(r) != c.largest &&
+               box[r].diagonal().norm() < min_diagonal;
+  return remove_marked(mesh, c, small);
+}
 
-  TriangleMesh kept;
-  std::vector<int> index(x.size(), -1);
+RemovedComponents remove_open_components(TriangleMesh& mesh) {
+  if (mesh.faces.empty()) return {};
+  const Components c = components(mesh);
+  // An edge that one face alone has is a boundary edge.
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(3 * mesh.faces.size());
   for (const auto& f : mesh.faces)
-    if (!small[root(parent, f[0])])
-      for (int v : f) index[v] = 0;
-  for (std::size_t v = 0; v < x.size(); ++v)
-    if (index[v] == 0) {
-      index[v] = static_cast<int>(kept.vertices.size());
-      kept.vertices.push_back(x[v]);
-    }
-  for (const auto& f : mesh.faces)
-    if (!small[root(parent, f[0])]) kept.faces.push_back({index[f[0]], index[f[1]], index[f[2]]});
-  mesh = std::move(kept);
-  return report;
+    for (int i = 0; i < 3; ++i) edges.push_back(std::minmax(f[i], f[(i + 1) % 3]));
+  std::sort(edges.begin(), edges.end());
+  std::vector<char> open(mesh.vertices.size(), 0);
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i + 1;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1 && c.root_of[edges[i].first] != c.largest) open[c.root_of[edges[i].first]] = 1;
+    i = j;
+  }
+  return remove_marked(mesh, c, open);
 }
 
 }  // namespace pdd

@@ -233,12 +233,14 @@ class Run {
     stats.seconds_optimize += seconds_since(t);
   }
 
-  // The final isosurface without its small components, then with the flips
-  // and needle collapses of the clean-up; the final iteration's triangle
-  // statistics then describe the mesh returned.
+  // The final isosurface without its small and open components, then with
+  // the flips and needle collapses of the clean-up; the final iteration's
+  // triangle statistics then describe the mesh returned.
   void clean_up(const Domain& domain, IterationStats& stats) {
     report("clean-up", stats.iteration, domain);
     const auto t = Clock::now();
+    if (options_.min_component_edges > 0)
+      stats.open_components = remove_open_components(result_.mesh);
     stats.small_components = remove_small_components(result_.mesh, options_.min_component_edges);
     if (options_.cleanup)
       stats.cleanup = cleanup_isosurface(result_.mesh, options_.cleanup_options);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <utility>
 
 namespace pdd {
 namespace {
@@ -55,6 +56,8 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
         << ", \"cleanup\": " << number(s.seconds_cleanup) << "}"
         << ", \"removed_components\": " << s.small_components.components
         << ", \"removed_component_faces\": " << s.small_components.faces
+        << ", \"removed_open_components\": " << s.open_components.components
+        << ", \"removed_open_component_faces\": " << s.open_components.faces
         << ", \"cleanup_flips\": " << s.cleanup.flips
         << ", \"cleanup_collapses\": " << s.cleanup.collapses << "}";
   }
@@ -76,11 +79,15 @@ std::string statistics_table(const Result& result) {
                   s.seconds_optimize, s.seconds_refine, s.seconds_contour);
     out << line;
   }
-  if (!result.iterations.empty() && result.iterations.back().small_components.components > 0) {
-    const SmallComponentsReport& r = result.iterations.back().small_components;
-    std::snprintf(line, sizeof line, "removed %d small component%s (%d triangles)\n", r.components,
-                  r.components == 1 ? "" : "s", r.faces);
-    out << line;
+  if (!result.iterations.empty()) {
+    const IterationStats& last = result.iterations.back();
+    for (const auto& [r, kind] : {std::pair(last.small_components, "small"),
+                                  std::pair(last.open_components, "open")})
+      if (r.components > 0) {
+        std::snprintf(line, sizeof line, "removed %d %s component%s (%d triangles)\n",
+                      r.components, kind, r.components == 1 ? "" : "s", r.faces);
+        out << line;
+      }
   }
   if (!result.iterations.empty() && result.iterations.back().solver.value_weight > 0) {
     std::snprintf(line, sizeof line,
