@@ -71,9 +71,12 @@ struct Log {
   }
 };
 
-std::unique_ptr<ImplicitSolver> ssd_solver(LinearMethod method) {
+// SSD with the automatic value weight, the input's noise estimated once for
+// all the solver's solves, as reconstruct() does.
+std::unique_ptr<ImplicitSolver> ssd_solver(LinearMethod method, const PointSet& input) {
   SolverOptions options;
   options.kind = SolverKind::kSsd;
+  options.ssd.noise = estimate_noise(input);
   options.linear.method = method;
   options.linear.cg_tolerance = 1e-10;
   options.linear.cg_max_iterations = 1000000;
@@ -139,7 +142,7 @@ void asap_step(Domain& domain) {
 // Round 0: K times solve and refine, with one ASAP round before each solve
 // but the first; f of the last refinement is interpolated, not solved.
 Domain refined_domain(const PointSet& input, int iterations, Log& log) {
-  auto solver = ssd_solver(LinearMethod::kCholmod);
+  auto solver = ssd_solver(LinearMethod::kCholmod, input);
   Domain domain = Domain::initial(input);
   const auto sizing = uniform_sizing(area_for_edge_length(average_spacing(input)));
   std::mt19937_64 rng(1);
@@ -160,7 +163,7 @@ void asap_rounds(const Domain& start, const PointSet& input, const OptimizerOpti
   log(format("%6s %8s %8s %10s %9s %10s %9s %8s %8s %9s\n", "rounds", "jacobi", "(s)", "residual",
              "cg+ic", "residual", "min dih", "< 10 %", "mean min", "E after"));
   Domain domain = start;
-  auto solver = ssd_solver(LinearMethod::kConjugateGradient);
+  auto solver = ssd_solver(LinearMethod::kConjugateGradient, input);
   std::vector<std::string> histograms;
   Histogram any;
   double energy = 0;
@@ -217,7 +220,7 @@ void ablation(const PointSet& input, int iterations, Log& log) {
   for (const Strategy& s : strategies) {
     const auto t0 = Clock::now();
     const bool runs_asap = s.optimize && s.options.asap;
-    auto solver = ssd_solver(LinearMethod::kCholmod);
+    auto solver = ssd_solver(LinearMethod::kCholmod, input);
     Domain domain = Domain::initial(input);
     std::mt19937_64 rng(1);
     for (int k = 0; k <= iterations; ++k) {
@@ -283,7 +286,7 @@ int main(int argc, char** argv) {
                  start.num_tets(), seconds_since(t0)));
       Domain with_points = Domain::initial(input);
       with_points.insert(input.points);
-      with_points.set_f(ssd_solver(LinearMethod::kCholmod)->solve(with_points, input));
+      with_points.set_f(ssd_solver(LinearMethod::kCholmod, input)->solve(with_points, input));
       for (const Domain* domain : std::vector<const Domain*>{&start, &with_points}) {
         const std::string name = domain == &start ? "refined domain" : "initial domain + input points";
         if (domain == &with_points)

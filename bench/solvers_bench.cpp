@@ -93,6 +93,7 @@ struct Config {
 std::string run(const Config& c, const pdd::Domain& base, const pdd::PointSet& samples) {
   pdd::SolverOptions options;
   options.kind = c.kind;
+  options.ssd.noise = pdd::estimate_noise(samples);  // once, as reconstruct() does
   options.linear.method = c.method;
   options.linear.preconditioner = c.preconditioner;
   std::ostringstream line;

@@ -169,7 +169,8 @@ struct SolverStats {
                                  // products with B^-1 A
   double residual = 0;           // |A x - b| / |b| of the final solve (spectral: of the eigenpair,
                                  // |A x - lambda B x| / (lambda |B x|))
-  double assembly_seconds = 0;   // point location, operators and system matrix
+  double assembly_seconds = 0;   // point location, operators and system matrix (and SSD's
+                                 // noise estimate when SsdOptions::noise asks for one)
   double factorize_seconds = 0;  // symbolic + numeric factorization, or preconditioner
   double solve_seconds = 0;      // triangular solves / CG / Lanczos, and the median shift
   bool reused_analysis = false;  // the symbolic factorization of the previous solve was kept

@@ -139,7 +139,8 @@ Domain Domain::moved(const std::vector<Vec3>& new_positions, std::vector<double>
   const Impl& d = *impl_;
   const std::size_t n = num_vertices();
   if (new_positions.size() != n || f.size() != n)
-    throw std::invalid_argument("Domain::move_vertices: one position and value per vertex is required");
+    throw std::invalid_argument(
+        "Domain::move_vertices: one position and value per vertex is required");
   Domain out;
   Impl& o = *out.impl_;
   o.f = std::move(f);
