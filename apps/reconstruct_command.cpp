@@ -33,7 +33,7 @@ struct ReconstructArgs {
   std::string stats_output;   // "" or a .json for the per-iteration statistics
   std::string iterations_dir; // "" or a folder for every iteration's isosurface and domain
   std::string solver = to_string(ReconstructOptions{}.solver.kind);  // ssd | poisson | spectral
-  std::string linear = to_string(ReconstructOptions{}.solver.linear.method);  // auto | cholmod | cg
+  std::string linear = to_string(ReconstructOptions{}.solver.linear.method);  // multigrid | cholmod
   std::string strategy = to_string(ReconstructOptions{}.strategy);   // progressive | ...
   std::string sizing = "uniform";                                     // uniform | adaptive
   ReconstructOptions options;
@@ -148,17 +148,10 @@ void add_reconstruct_command(CLI::App& app) {
                   "largest side)")
       ->check(greater_than(0));
   cmd->add_option("--linear", args->linear,
-                  "Linear solves: auto (SSD, spectral: CG from the previous solution, CHOLMOD "
-                  "where there is none; Poisson: CG), cholmod (always direct: about as fast, "
-                  "twice the memory) or cg (always conjugate gradients)")
-      ->check(CLI::IsMember({"auto", "cholmod", "cg"}))
-      ->capture_default_str();
-  cmd->add_option("--loop-tolerance", args->options.loop_solve.tolerance,
-                  "If > 0, the solves before the final one stop at this relative residual on "
-                  "domains of 10k vertices or more, and a converged solve follows the last one "
-                  "(no faster with the default loop; can change the topology of sparse or "
-                  "partial ones)")
-      ->check(at_least(0))
+                  "Linear solves: multigrid (conjugate gradients preconditioned by V-cycles over "
+                  "the earlier iterations' domains; CHOLMOD under 20k unknowns) or cholmod "
+                  "(always direct: the reference, memory and time superlinear)")
+      ->check(CLI::IsMember({"multigrid", "cholmod"}))
       ->capture_default_str();
   cmd->add_option("--domain", args->strategy,
                   "How the domain is built (§4.2): progressive (ours), direct (refine without "

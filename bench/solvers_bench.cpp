@@ -1,24 +1,34 @@
-// Times the three solvers of §3.5 on domains of about 10k, 50k and 200k
-// vertices, for each linear route (CHOLMOD, CG + Jacobi, CG + incomplete
-// Cholesky), and records assembly, factorization and solve times, CG
-// iterations, residuals and peak memory.
+// The linear solve of SSD (Eq. 15) at growing sizes, by each route: CHOLMOD,
+// CG + incomplete Cholesky (Eigen), CG + geometric multigrid over the
+// progressive hierarchy (pdd's default) and, when built with hypre, CG +
+// BoomerAMG. Records CG iterations to the default tolerance, setup and solve
+// seconds, and peak memory.
 //
-//   solvers_bench [--sizes 10000,50000,200000] [--out bench/results/solvers.txt]
+//   solvers_bench [--sizes 50000,200000,1000000] [--out bench/results/solvers.txt]
+//                 [--direct-max 450000] [--tolerance 1e-6]
 //
-// Each configuration runs in a child process (fork) so that its peak
-// resident memory (ru_maxrss) is its own: the domain (built once by the
-// parent) plus everything the solve allocates. Per configuration:
-//   cold   - a fresh solver on the domain, no warm start;
-//   refit  - the same solver object, same domain again (CHOLMOD reuses its
-//            symbolic analysis; CG starts from the previous f);
-//   warm   - the domain refined as the progressive loop does (5% more
-//            vertices near the surface, f interpolated by Domain::insert),
-//            solved with that f as warm start.
-// The samples are an ellipsoid (1, 0.7, 0.5) with exact normals; the domain
-// is Domain::initial plus two thirds of its vertices in a shell around the
-// surface and one third spread through the ball, like a progressive domain.
+// Domains: an ellipsoid's samples (1, 0.7, 0.5; exact normals, one sample per
+// 4 vertices) in Domain::initial, refined three times by a factor of 3 (two
+// thirds of the new vertices in a shell around the surface, one third spread
+// through the ball), like the progressive loop's last iterations. The
+// multigrid route solves the four domains in order with one solver, so the
+// earlier ones are its coarse levels, and reports the last solve; the other
+// routes solve the last domain alone. Every route runs in its own child
+// process (fork); its peak memory is the child's peak resident set less the
+// parent's at the fork (the domains). CHOLMOD is skipped above --direct-max
+// vertices, where its factor outgrows this machine.
 #include <pdd/domain.h>
 #include <pdd/solvers.h>
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCholesky>
+
+#ifdef PDD_HAVE_HYPRE
+#include <HYPRE.h>
+#include <HYPRE_IJ_mv.h>
+#include <HYPRE_parcsr_ls.h>
+#include <mpi.h>
+#endif
 
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -29,6 +39,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <random>
 #include <sstream>
@@ -38,6 +49,11 @@
 namespace {
 
 using pdd::Vec3;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 const Vec3 kAxes(1.0, 0.7, 0.5);
 
@@ -55,85 +71,205 @@ pdd::PointSet ellipsoid_samples(int n) {
   return ps;
 }
 
-// Points near the surface: samples moved along the normal and sideways.
-std::vector<Vec3> shell_points(const pdd::PointSet& samples, int n, double width, std::mt19937& rng) {
+// Grows `domain` to about `target` vertices: two thirds of the new points
+// near the surface (samples moved along the normal and sideways), one third
+// uniform in the ball.
+void grow(pdd::Domain& domain, const pdd::PointSet& samples, std::size_t target,
+          std::mt19937& rng) {
+  if (domain.num_vertices() >= target) return;
+  const std::size_t extra = target - domain.num_vertices();
   std::uniform_int_distribution<int> pick(0, static_cast<int>(samples.size()) - 1);
-  std::normal_distribution<double> g(0.0, width);
-  std::vector<Vec3> out;
-  out.reserve(n);
-  for (int i = 0; i < n; ++i) {
+  std::normal_distribution<double> g(0.0, 0.04);
+  std::vector<Vec3> points;
+  points.reserve(extra);
+  while (points.size() < 2 * extra / 3) {
     const int k = pick(rng);
-    out.push_back(samples.points[k] + g(rng) * samples.normals[k] +
-                  0.5 * Vec3(g(rng), g(rng), g(rng)));
+    points.push_back(samples.points[k] + g(rng) * samples.normals[k] +
+                     0.5 * Vec3(g(rng), g(rng), g(rng)));
   }
-  return out;
-}
-
-pdd::Domain make_domain(const pdd::PointSet& samples, int target, std::mt19937& rng) {
-  pdd::Domain domain = pdd::Domain::initial(samples);
-  const int extra = std::max(0, target - static_cast<int>(domain.num_vertices()));
-  std::vector<Vec3> points = shell_points(samples, 2 * extra / 3, 0.04, rng);
   const double r = 0.85 * domain.radius();
   std::uniform_real_distribution<double> u(-r, r);
-  while (static_cast<int>(points.size()) < extra) {
+  while (points.size() < extra) {
     const Vec3 p(u(rng), u(rng), u(rng));
     if (p.norm() < r) points.push_back(domain.center() + p);
   }
   domain.insert(points);
-  return domain;
 }
 
-struct Config {
-  pdd::SolverKind kind;
-  pdd::LinearMethod method;
-  pdd::Preconditioner preconditioner;
-  const char* route;
+struct Outcome {
+  int iterations = 0;
+  double residual = 0, setup = 0, solve = 0;
+  int levels = 0;
+  std::string note;
 };
 
-std::string run(const Config& c, const pdd::Domain& base, const pdd::PointSet& samples) {
-  pdd::SolverOptions options;
-  options.kind = c.kind;
-  options.ssd.noise = pdd::estimate_noise(samples);  // once, as reconstruct() does
-  options.linear.method = c.method;
-  options.linear.preconditioner = c.preconditioner;
-  std::ostringstream line;
-  char buf[512];
-  try {
-    auto solver = pdd::make_solver(options);
-    const std::vector<double> f = solver->solve(base, samples);
-    const pdd::SolverStats cold = solver->stats();
-    solver->solve(base, samples, &f);
-    const pdd::SolverStats refit = solver->stats();
-    pdd::Domain refined = base;
-    refined.set_f(f);
-    std::mt19937 rng(99);
-    refined.insert(shell_points(samples, static_cast<int>(base.num_vertices() / 20), 0.04, rng));
-    const std::vector<double> warm_start = refined.f();
-    solver->solve(refined, samples, &warm_start);
-    const pdd::SolverStats warm = solver->stats();
-    std::snprintf(buf, sizeof buf,
-                  "%-9s %-10s %8.3f %8.3f %8.3f %6d %9.1e %10zu | %8.3f %8.3f %6d | %8.3f %6d",
-                  pdd::to_string(c.kind).c_str(), c.route, cold.assembly_seconds,
-                  cold.factorize_seconds, cold.solve_seconds, cold.iterations, cold.residual,
-                  cold.nonzeros, refit.factorize_seconds, refit.solve_seconds, refit.iterations,
-                  warm.factorize_seconds + warm.solve_seconds, warm.iterations);
-    line << buf;
-  } catch (const std::exception& e) {
-    std::snprintf(buf, sizeof buf, "%-9s %-10s FAILED: ", pdd::to_string(c.kind).c_str(), c.route);
-    line << buf << e.what();
-  }
-  return line.str();
+pdd::SolverOptions ssd_options(const pdd::PointSet& samples, double tolerance) {
+  pdd::SolverOptions o;
+  o.kind = pdd::SolverKind::kSsd;
+  o.ssd.noise = pdd::estimate_noise(samples);
+  o.linear.cg_tolerance = tolerance;
+  return o;
 }
 
-// Runs `c` in a child process; returns its line and peak memory.
-std::string run_isolated(const Config& c, const pdd::Domain& domain, const pdd::PointSet& samples) {
+double relative_residual(const pdd::LinearSystem& s, const Eigen::VectorXd& x) {
+  return (s.A * x - s.b).norm() / s.b.norm();
+}
+
+Outcome run_cholmod(const std::vector<pdd::Domain>& domains, const pdd::PointSet& samples,
+                    double tolerance) {
+  pdd::SolverOptions o = ssd_options(samples, tolerance);
+  o.linear.method = pdd::LinearMethod::kCholmod;
+  auto solver = pdd::make_solver(o);
+  solver->solve(domains.back(), samples);
+  const pdd::SolverStats& s = solver->stats();
+  return {s.iterations, s.residual, s.factorize_seconds, s.solve_seconds, 1, ""};
+}
+
+Outcome run_multigrid(const std::vector<pdd::Domain>& domains, const pdd::PointSet& samples,
+                      double tolerance) {
+  auto solver = pdd::make_solver(ssd_options(samples, tolerance));
+  for (const pdd::Domain& d : domains) solver->solve(d, samples);
+  const pdd::SolverStats& s = solver->stats();
+  return {s.iterations, s.residual, s.factorize_seconds, s.solve_seconds, s.levels, ""};
+}
+
+// Eigen's CG with its incomplete Cholesky (the route pdd used before the
+// multigrid), capped at 2000 iterations.
+Outcome run_incomplete_cholesky(const std::vector<pdd::Domain>& domains,
+                                const pdd::PointSet& samples, double tolerance) {
+  const pdd::LinearSystem s = pdd::ssd_system(domains.back(), samples,
+                                              ssd_options(samples, tolerance).ssd);
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
+                           Eigen::IncompleteCholesky<double>>
+      cg;
+  cg.setTolerance(tolerance);
+  cg.setMaxIterations(2000);
+  auto start = Clock::now();
+  cg.compute(s.A);
+  Outcome out;
+  out.setup = seconds_since(start);
+  start = Clock::now();
+  const Eigen::VectorXd x = cg.solve(s.b);
+  out.solve = seconds_since(start);
+  out.iterations = static_cast<int>(cg.iterations());
+  out.residual = relative_residual(s, x);
+  if (cg.info() != Eigen::Success) out.note = "not converged";
+  return out;
+}
+
+#ifdef PDD_HAVE_HYPRE
+// hypre's BoomerAMG (one V-cycle, HMIS coarsening, extended+i interpolation
+// truncated to 4 entries, hybrid symmetric Gauss-Seidel) as the
+// preconditioner of hypre's PCG, serial: the best of the settings tried
+// (docs/benchmarks.md, "Multigrid").
+Outcome run_boomeramg(const std::vector<pdd::Domain>& domains, const pdd::PointSet& samples,
+                      double tolerance) {
+  const pdd::LinearSystem s = pdd::ssd_system(domains.back(), samples,
+                                              ssd_options(samples, tolerance).ssd);
+  int argc = 0;
+  char** argv = nullptr;
+  MPI_Init(&argc, &argv);
+  HYPRE_Init();
+  const int n = static_cast<int>(s.A.rows());
+  auto start = Clock::now();
+  Eigen::SparseMatrix<double, Eigen::RowMajor> rows = s.A;  // symmetric: rows = columns
+  std::vector<int> counts(n), index(n);
+  for (int i = 0; i < n; ++i) {
+    counts[i] = rows.outerIndexPtr()[i + 1] - rows.outerIndexPtr()[i];
+    index[i] = i;
+  }
+  HYPRE_IJMatrix A;
+  HYPRE_IJMatrixCreate(MPI_COMM_WORLD, 0, n - 1, 0, n - 1, &A);
+  HYPRE_IJMatrixSetObjectType(A, HYPRE_PARCSR);
+  HYPRE_IJMatrixSetRowSizes(A, counts.data());
+  HYPRE_IJMatrixInitialize(A);
+  HYPRE_IJMatrixSetValues(A, n, counts.data(), index.data(), rows.innerIndexPtr(),
+                          rows.valuePtr());
+  HYPRE_IJMatrixAssemble(A);
+  auto vector = [&](const double* values) {
+    HYPRE_IJVector v;
+    HYPRE_IJVectorCreate(MPI_COMM_WORLD, 0, n - 1, &v);
+    HYPRE_IJVectorSetObjectType(v, HYPRE_PARCSR);
+    HYPRE_IJVectorInitialize(v);
+    HYPRE_IJVectorSetValues(v, n, index.data(), values);
+    HYPRE_IJVectorAssemble(v);
+    return v;
+  };
+  const std::vector<double> zero(n, 0.0);
+  HYPRE_IJVector b = vector(s.b.data()), x = vector(zero.data());
+  HYPRE_ParCSRMatrix pa;
+  HYPRE_ParVector pb, px;
+  HYPRE_IJMatrixGetObject(A, reinterpret_cast<void**>(&pa));
+  HYPRE_IJVectorGetObject(b, reinterpret_cast<void**>(&pb));
+  HYPRE_IJVectorGetObject(x, reinterpret_cast<void**>(&px));
+
+  HYPRE_Solver pcg, amg;
+  HYPRE_ParCSRPCGCreate(MPI_COMM_WORLD, &pcg);
+  HYPRE_PCGSetTol(pcg, tolerance);
+  HYPRE_PCGSetMaxIter(pcg, 2000);
+  HYPRE_PCGSetTwoNorm(pcg, 1);
+  HYPRE_BoomerAMGCreate(&amg);
+  HYPRE_BoomerAMGSetCoarsenType(amg, 10);
+  HYPRE_BoomerAMGSetInterpType(amg, 6);
+  HYPRE_BoomerAMGSetPMaxElmts(amg, 4);
+  HYPRE_BoomerAMGSetStrongThreshold(amg, 0.5);
+  HYPRE_BoomerAMGSetRelaxType(amg, 6);
+  HYPRE_BoomerAMGSetNumSweeps(amg, 1);
+  HYPRE_BoomerAMGSetTol(amg, 0.0);
+  HYPRE_BoomerAMGSetMaxIter(amg, 1);
+  HYPRE_PCGSetPrecond(pcg, reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSolve),
+                      reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSetup), amg);
+  HYPRE_ParCSRPCGSetup(pcg, pa, pb, px);
+  Outcome out;
+  out.setup = seconds_since(start);
+  start = Clock::now();
+  HYPRE_ParCSRPCGSolve(pcg, pa, pb, px);
+  out.solve = seconds_since(start);
+  HYPRE_PCGGetNumIterations(pcg, &out.iterations);
+  Eigen::VectorXd solution(n);
+  HYPRE_IJVectorGetValues(x, n, index.data(), solution.data());
+  out.residual = relative_residual(s, solution);
+  out.note = "serial (Debian's hypre has no OpenMP)";
+  HYPRE_Finalize();
+  MPI_Finalize();
+  return out;
+}
+#endif
+
+struct Route {
+  const char* name;
+  std::function<Outcome(const std::vector<pdd::Domain>&, const pdd::PointSet&, double)> run;
+};
+
+long resident_kb() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmRSS:", 0) == 0) return std::atol(line.c_str() + 6);
+  return 0;
+}
+
+// Runs the route in a child process; its line with the peak memory added.
+std::string run_isolated(const Route& route, const std::vector<pdd::Domain>& domains,
+                         const pdd::PointSet& samples, double tolerance) {
   int fd[2];
   if (pipe(fd) != 0) return "pipe failed";
+  const long parent_kb = resident_kb();
   const pid_t pid = fork();
   if (pid == 0) {
     close(fd[0]);
-    const std::string line = run(c, domain, samples);
-    if (write(fd[1], line.data(), line.size()) < 0) _exit(1);
+    char buf[512];
+    try {
+      const Outcome o = route.run(domains, samples, tolerance);
+      std::snprintf(buf, sizeof buf, "%-13s %6d %9.1e %7d %9.2f %9.2f", route.name, o.iterations,
+                    o.residual, o.levels, o.setup, o.solve);
+      std::string line = buf;
+      if (!o.note.empty()) line += "  (" + o.note + ")";
+      if (write(fd[1], line.data(), line.size()) < 0) _exit(1);
+    } catch (const std::exception& e) {
+      std::snprintf(buf, sizeof buf, "%-13s FAILED: %s", route.name, e.what());
+      if (write(fd[1], buf, std::strlen(buf)) < 0) _exit(1);
+    }
     close(fd[1]);
     _exit(0);
   }
@@ -146,68 +282,75 @@ std::string run_isolated(const Config& c, const pdd::Domain& domain, const pdd::
   int status = 0;
   struct rusage usage;
   wait4(pid, &status, 0, &usage);
-  if (line.empty()) line = std::string(pdd::to_string(c.kind)) + " " + c.route + " CRASHED";
+  if (line.empty()) line = std::string(route.name) + " CRASHED";
   char mem[64];
-  std::snprintf(mem, sizeof mem, " | %7.0f", usage.ru_maxrss / 1024.0);
+  std::snprintf(mem, sizeof mem, " | %7.0f", (usage.ru_maxrss - parent_kb) / 1024.0);
   return line + mem;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<int> sizes = {10000, 50000, 200000};
+  std::vector<std::size_t> sizes = {50000, 200000, 1000000};
   std::string out_path = "bench/results/solvers.txt";
+  std::size_t direct_max = 450000;
+  double tolerance = 1e-6;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--sizes")) {
       sizes.clear();
       std::stringstream ss(argv[i + 1]);
       std::string item;
-      while (std::getline(ss, item, ',')) sizes.push_back(std::stoi(item));
+      while (std::getline(ss, item, ',')) sizes.push_back(std::stoul(item));
     } else if (!std::strcmp(argv[i], "--out")) {
       out_path = argv[i + 1];
+    } else if (!std::strcmp(argv[i], "--direct-max")) {
+      direct_max = std::stoul(argv[i + 1]);
+    } else if (!std::strcmp(argv[i], "--tolerance")) {
+      tolerance = std::stod(argv[i + 1]);
     }
   }
-  using K = pdd::SolverKind;
-  using M = pdd::LinearMethod;
-  using P = pdd::Preconditioner;
-  const std::vector<Config> configs = {
-      {K::kPoisson, M::kCholmod, P::kAuto, "cholmod"},
-      {K::kPoisson, M::kConjugateGradient, P::kJacobi, "cg+jacobi"},
-      {K::kPoisson, M::kConjugateGradient, P::kIncompleteCholesky, "cg+ic"},
-      {K::kSsd, M::kCholmod, P::kAuto, "cholmod"},
-      {K::kSsd, M::kConjugateGradient, P::kJacobi, "cg+jacobi"},
-      {K::kSsd, M::kConjugateGradient, P::kIncompleteCholesky, "cg+ic"},
-      {K::kSpectral, M::kCholmod, P::kAuto, "cholmod"},
-      {K::kSpectral, M::kConjugateGradient, P::kIncompleteCholesky, "cg+ic"},
+  std::vector<Route> routes = {
+      {"cg+multigrid", run_multigrid},
+      {"cg+ic", run_incomplete_cholesky},
+#ifdef PDD_HAVE_HYPRE
+      {"cg+boomeramg", run_boomeramg},
+#endif
+      {"cholmod", run_cholmod},
   };
 
   std::ostringstream report;
-  report << "# solvers_bench: ellipsoid samples, domain = initial + shell + uniform points\n"
-         << "# times in seconds (wall), memory = peak RSS of the configuration's process in MB\n"
-         << "# columns: solver route assembly factorize solve iterations residual nnz"
-         << " | refit: factorize solve iterations | warm (5% refined): factorize+solve iterations"
-         << " | peak MB\n";
+  report << "# solvers_bench: SSD (Eq. 15) on an ellipsoid's progressive domains, relative"
+         << " tolerance " << tolerance << "\n"
+         << "# columns: route, CG iterations, |Ax-b|/|b|, multigrid levels, setup s, solve s"
+         << " | peak MB over the domains'\n";
+#ifndef PDD_HAVE_HYPRE
+  report << "# built without hypre: no BoomerAMG route (bench/solvers.sh installs libhypre-dev)\n";
+#endif
   std::cout << report.str();
-  for (int target : sizes) {
+  for (std::size_t target : sizes) {
     std::mt19937 rng(7);
-    const pdd::PointSet samples = ellipsoid_samples(std::max(2000, target / 4));
-    const auto start = std::chrono::steady_clock::now();
-    const pdd::Domain domain = make_domain(samples, target, rng);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const pdd::PointSet samples = ellipsoid_samples(static_cast<int>(std::max<std::size_t>(2000, target / 4)));
+    const auto start = Clock::now();
+    std::vector<pdd::Domain> domains;
+    domains.push_back(pdd::Domain::initial(samples));
+    grow(domains.back(), samples, target / 27, rng);
+    for (std::size_t k : {9, 3, 1}) {
+      domains.push_back(domains.back());
+      grow(domains.back(), samples, target / k, rng);
+    }
     std::ostringstream head;
-    head << "\n## " << domain.num_vertices() << " vertices, " << domain.num_tets() << " tets, "
-         << samples.size() << " samples (domain built in " << seconds << " s)\n";
+    head << "\n## " << domains.back().num_vertices() << " vertices, " << domains.back().num_tets()
+         << " tets, " << samples.size() << " samples; earlier domains";
+    for (std::size_t k = 0; k + 1 < domains.size(); ++k) head << " " << domains[k].num_vertices();
+    head << " (built in " << seconds_since(start) << " s)\n";
     std::cout << head.str() << std::flush;
     report << head.str();
-    for (const Config& c : configs) {
-      // Slow routes that never won at smaller sizes are skipped where they
-      // would take many minutes: the spectral solver with CG inner solves
-      // (one solve per Lanczos step; 12 s at 10k, over 12 min at 50k) and
-      // SSD with CG + Jacobi (4000+ iterations at 50k).
-      if (c.kind == K::kSpectral && c.method == M::kConjugateGradient && target > 20000) continue;
-      if (c.kind == K::kSsd && c.preconditioner == P::kJacobi && target > 60000) continue;
-      const std::string line = run_isolated(c, domain, samples);
+    for (const Route& r : routes) {
+      std::string line;
+      if (!std::strcmp(r.name, "cholmod") && domains.back().num_vertices() > direct_max)
+        line = "cholmod       skipped: over --direct-max";
+      else
+        line = run_isolated(r, domains, samples, tolerance);
       std::cout << line << "\n" << std::flush;
       report << line << "\n";
     }

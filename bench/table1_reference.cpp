@@ -196,8 +196,8 @@ int build(const Options& o) {
 
   // (5) SSD and marching tetrahedra.
   t = Clock::now();
-  // CHOLMOD: f carried over from another domain is a poor start for CG (the
-  // default route would spend its 500 iterations before falling back).
+  // CHOLMOD: one solve on a domain not refined from earlier ones, so no
+  // coarse levels for the multigrid to reuse.
   SolverOptions direct;
   direct.linear.method = LinearMethod::kCholmod;
   const auto solver = make_solver(direct);

@@ -68,7 +68,7 @@ class Domain {
   // For tet t and i in 0..3: the tet opposite vertex i, or -1 on the hull.
   const std::vector<std::array<int, 4>>& tet_neighbors() const;
   // vertices() and tets() together, for the stages that only need geometry.
-  TetMesh mesh() const;
+  const TetMesh& mesh() const;
 
   // The piecewise-linear function f, one value per vertex.
   const std::vector<double>& f() const;
@@ -93,9 +93,11 @@ class Domain {
   double interpolate(const Location& at, const std::vector<double>& values) const;
 
   // Inserts points; each new vertex gets f interpolated in the tet that
-  // contained it before insertion. Returns the indices of the new vertices
-  // (points that coincide with an existing vertex are not inserted and are
-  // not returned). Points outside the domain are an std::invalid_argument.
+  // contained it before insertion. The new vertices are numbered after the
+  // existing ones, in spatial (Hilbert) order. Returns their indices in the
+  // order of `points` (points that coincide with an existing vertex are not
+  // inserted and are not returned). Points outside the domain are an
+  // std::invalid_argument.
   std::vector<int> insert(const std::vector<Vec3>& points, std::uint8_t flags = 0);
 
   // Delaunay refinement by circumcenter insertion (worst tet first) until

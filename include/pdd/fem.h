@@ -42,6 +42,11 @@ Eigen::VectorXd vertex_masses(const TetMesh& mesh);
 // component of the gradient of the barycentric coordinate of v in tet t.
 SparseMatrix gradient_matrix(const TetMesh& mesh);
 
+// G^T v for one vector v_t per tet, without forming G: entry i is the sum over
+// the tets t around vertex i of grad(phi_i)|_t . v_t. Tets whose v_t is zero
+// cost nothing (the SSD right-hand side: only the tets holding samples).
+Eigen::VectorXd gradient_transpose_times(const TetMesh& mesh, const std::vector<Vec3>& per_tet);
+
 // The integrated cotangent Laplacian of Eq. (12), positive semi-definite
 // (see the sign convention above): for an edge (i, j),
 // L_ij = -sum over tets t containing (i, j) of l_kl cot(theta_kl) / 6, where
@@ -80,6 +85,14 @@ SparseMatrix hessian_energy(const TetMesh& mesh);
 // parallel (Gustavson's algorithm) and deterministic; on one thread it runs
 // at the speed of Eigen's (serial) sparse product for one-ring matrices.
 SparseMatrix gram_matrix(const SparseMatrix& A, const Eigen::VectorXd& d);
+
+// The Galerkin product P^T A P (P: n x m, A: n x n symmetric, all entries
+// stored), column by column in parallel and deterministic: the coarse
+// operators of the multigrid solver.
+SparseMatrix galerkin_product(const SparseMatrix& P, const SparseMatrix& A);
+
+// A B, column by column in parallel and deterministic.
+SparseMatrix sparse_product(const SparseMatrix& A, const SparseMatrix& B);
 
 // Locates every point in the domain (Domain::locate). Throws InputError
 // naming how many points fall outside the domain (and the first of them).

@@ -51,31 +51,10 @@ class Domain;
 using IterationCallback =
     std::function<void(const IterationStats&, const Domain&, const TriangleMesh& isosurface)>;
 
-// The solves inside the loop only guide the optimizer and the refiner: the
-// final solve decides the output. With tolerance > 0 they run conjugate
-// gradients (Jacobi) from the previous iteration's f, carried over to the
-// refined domain, to that loose tolerance on large domains: a coarse-to-fine
-// cascade, each domain starting from the solution of the coarser one; when the
-// last of them is loose, a converged solve follows on the same domain. Off by
-// default: at 1e-4 it saved 7-9 % of the time on dense inputs with the paper's
-// loop order and saves nothing with ours (ReconstructOptions::optimizer_rounds:
-// the last loop solve is the final one), and CG leaves the
-// smooth far-field error, which is what places the surface between sparse
-// samples and on the unseen side of a partial scan, and there it changed the
-// topology (a handle on fandisk_sparse at 1e-4, an open back on CGAL's hippo
-// scan at 3e-4; docs/benchmarks.md, "Loop solves"). Not for the spectral
-// solver, whose Lanczos iterations need exact inner solves.
-struct LoopSolveOptions {
-  double tolerance = 0;              // relative residual |A f - b| / |b|; 0: solve like the final
-  std::size_t min_vertices = 10000;  // smaller domains are solved like the final solve (cheap,
-                                     // and their coarse warm start is far from the solution)
-};
-
 struct ReconstructOptions {
   DomainStrategy strategy = DomainStrategy::kProgressive;
   DomainOptions domain;        // §3.2: sphere 1.4 r, 100 points, radius-edge 1.3
   SolverOptions solver;        // §3.5: SSD by default
-  LoopSolveOptions loop_solve;  // the solves before the final one (see LoopSolveOptions)
   OptimizerOptions optimizer;  // §3.3: lambda_a = 60, lambda_m = 3 (optimize.h)
   // Optimizer passes (§3.3) per iteration: on each refined domain before it is solved on, with
   // the previous solution carried over (so that every solve runs on optimized tets), and after

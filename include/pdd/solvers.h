@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,40 +33,30 @@ std::string to_string(SolverKind kind);
 
 // How the sparse symmetric positive definite systems are solved.
 enum class LinearMethod {
-  kAuto,               // the route measured best for each solver (docs/benchmarks.md):
-                       // Poisson: CG + Jacobi; SSD and spectral: CG + incomplete Cholesky from
-                       // the warm start when there is one, CHOLMOD when there is none or CG has
-                       // not converged after cg_fallback_iterations
-  kCholmod,            // supernodal Cholesky (CHOLMOD with OpenBLAS); the symbolic analysis is
-                       // reused while the sparsity pattern does not change
-  kConjugateGradient,  // Eigen's conjugate gradients from the warm start, if any, for every solve
+  kMultigrid,  // conjugate gradients preconditioned by multigrid V-cycles whose coarse levels
+               // are the domains of the earlier iterations (the progressive hierarchy, §3.1),
+               // from the warm start; systems under direct_below unknowns by CHOLMOD
+  kCholmod,    // supernodal Cholesky (CHOLMOD with OpenBLAS) for every system: the reference
 };
 
-enum class Preconditioner {
-  kAuto,                // Jacobi for Poisson, incomplete Cholesky for SSD and spectral
-  kJacobi,              // diagonal: free to build, more iterations
-  kIncompleteCholesky,  // Eigen's IncompleteCholesky (AMD ordering): costly to build, fewer iterations
-};
-
-// "auto", "cholmod" or "cg" (any case); InputError otherwise.
+// "multigrid" or "cholmod" (any case); InputError otherwise.
 LinearMethod parse_linear_method(const std::string& name);
 std::string to_string(LinearMethod method);
 
 struct LinearSolverOptions {
-  LinearMethod method = LinearMethod::kAuto;           // see LinearMethod
-  Preconditioner preconditioner = Preconditioner::kAuto;  // see Preconditioner
-  double cg_tolerance = 1e-10;  // CG stops at |A x - b| <= tol |b|; the paper's tolerance (§4.4, Table 2)
-  int cg_max_iterations = 20000;  // CG gives up (SolverError) after this many iterations
-  int cg_fallback_iterations = 500;  // kAuto, SSD and spectral: CHOLMOD takes over from CG after
-                                     // this many iterations (the solves of the progressive loop
-                                     // on the shared data need 10-200)
-  double max_residual = 1e-6;     // a direct solve whose |A x - b| / |b| exceeds this is a SolverError
-  // The incomplete Cholesky preconditioner factors A + shift diag(|a_j|), |a_j| the norm of
-  // column j, with shift = ic_shift at first. A breakdown (a pivot <= 0) restarts the
-  // factorization with more shift; the shift that worked is kept for the solver's next systems.
-  // Unshifted, the SSD systems of the shared data broke down up to five times in a row (1.1-1.6 s
-  // instead of 0.4-0.5 s at 40k unknowns, docs/benchmarks.md).
-  double ic_shift = 0.01;
+  LinearMethod method = LinearMethod::kMultigrid;  // see LinearMethod
+  std::size_t direct_below = 20000;  // kMultigrid: smaller systems are factored by CHOLMOD
+  double cg_tolerance = 1e-6;  // CG stops at |A x - b| <= tol |b|: on the shared data the
+                               // surfaces are those of 1e-10 (Chamfer-L1 within 0.5 %, the
+                               // same topology) at half the iterations (docs/benchmarks.md)
+  int cg_max_iterations = 1000;  // CG gives up (SolverError) after this many iterations
+  double max_residual = 1e-6;   // a direct solve whose |A x - b| / |b| exceeds this is a SolverError
+  // Multigrid (docs/benchmarks.md, "Multigrid"): Chebyshev smoothing of this degree before and
+  // after each coarse correction; each coarse level has about 1 / coarsening_ratio (>= 1.3) of
+  // the vertices of the finer one; levels of coarsest_size vertices or fewer are factored.
+  int smoothing_degree = 6;
+  double coarsening_ratio = 3;
+  std::size_t coarsest_size = 4000;
 };
 
 // Screened Poisson, Eqs. (13)-(14):
@@ -164,18 +155,17 @@ struct SolverOptions {
 
 // What the last solve did.
 struct SolverStats {
-  std::string method;            // "cholmod", "cg+jacobi", "cg+ic"; spectral: "lanczos+" one of them
+  std::string method;            // "cholmod" or "cg+multigrid"; spectral: "lanczos+" one of them
   int iterations = 0;            // CG iterations (0 for CHOLMOD); spectral: Lanczos steps, i.e.
                                  // products with B^-1 A
+  int levels = 0;                // multigrid levels, the system's included (1: direct)
   double residual = 0;           // |A x - b| / |b| of the final solve (spectral: of the eigenpair,
                                  // |A x - lambda B x| / (lambda |B x|))
   double assembly_seconds = 0;   // point location, operators and system matrix (and SSD's
                                  // noise estimate when SsdOptions::noise asks for one)
-  double factorize_seconds = 0;  // symbolic + numeric factorization, or preconditioner
+  double factorize_seconds = 0;  // CHOLMOD's factorization, or the multigrid's set-up (coarse
+                                 // levels, Galerkin operators, smoother bounds)
   double solve_seconds = 0;      // triangular solves / CG / Lanczos, and the median shift
-  bool reused_analysis = false;  // the symbolic factorization of the previous solve was kept
-  double ic_shift = 0;           // cg+ic: the diagonal shift its preconditioner was built with
-                                 // (LinearSolverOptions::ic_shift, raised by breakdowns)
   std::size_t num_vertices = 0;
   std::size_t num_points = 0;
   std::size_t nonzeros = 0;      // in the system matrix (lower and upper)
@@ -190,8 +180,11 @@ class ImplicitSolver {
   virtual ~ImplicitSolver();
   // f at the vertices of `domain` (f < 0 inside). warm_start, if given, is a
   // guess of f at the same vertices (e.g. the previous iterate interpolated
-  // onto the new domain); the CG routes start from it (the spectral solver
-  // checks its size but does not use it, see spectral.cpp). Throws InputError
+  // onto the new domain); CG starts from it (the spectral solver checks its
+  // size but does not use it, see spectral.cpp). A solver called on a
+  // sequence of domains, each refined from the last (vertex i of one is
+  // vertex i of the next, as Domain::insert and the optimizer keep them),
+  // uses the earlier ones as the coarse levels of its multigrid. Throws InputError
   // when a point lies outside the domain or normals are missing, SolverError
   // when the numerical solve fails (never returns an unconverged f).
   virtual std::vector<double> solve(const Domain& domain, const PointSet& points,
@@ -209,9 +202,6 @@ std::unique_ptr<ImplicitSolver> make_solver(const SolverOptions& options);
 struct LinearSystem {
   Eigen::SparseMatrix<double> A;
   Eigen::VectorXd b;
-  // SSD: its stiffness part, whose one-ring pattern orders the incomplete
-  // Cholesky preconditioner (docs/benchmarks.md); empty for none.
-  Eigen::SparseMatrix<double> ordering_pattern;
 };
 
 // The system of Eq. (15) that the SSD solver solves, for studies of its

@@ -1,6 +1,9 @@
 #include <pdd/isofacet.h>
 
 #include <Eigen/Dense>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 
 namespace pdd {
 namespace {
@@ -15,53 +18,71 @@ Vec3 tet_gradient(const std::array<Vec3, 4>& v, const std::array<double, 4>& f) 
   return E.partialPivLu().solve(Vec3(f[1] - f[0], f[2] - f[0], f[3] - f[0]));
 }
 
+// The isofacet of tet t, if f changes sign over it.
+bool isofacet(const TetMesh& mesh, const std::vector<double>& f, double isovalue, int t,
+              Isofacet& a) {
+  const auto& tet = mesh.tets[t];
+  int neg[4], pos[4], nn = 0, np = 0;
+  for (int i = 0; i < 4; ++i) (f[tet[i]] < isovalue ? neg[nn++] : pos[np++]) = tet[i];
+  if (nn == 0 || np == 0) return false;
+
+  a = Isofacet();
+  a.tet = t;
+  a.negative_vertices = nn;
+  // Crossing edges in cyclic order around the facet.
+  std::array<std::array<int, 2>, 4> cycle;
+  if (nn == 1) {
+    cycle = {{{neg[0], pos[0]}, {neg[0], pos[1]}, {neg[0], pos[2]}, {0, 0}}};
+  } else if (np == 1) {
+    cycle = {{{neg[0], pos[0]}, {neg[1], pos[0]}, {neg[2], pos[0]}, {0, 0}}};
+  } else {
+    cycle = {{{neg[0], pos[0]}, {neg[0], pos[1]}, {neg[1], pos[1]}, {neg[1], pos[0]}}};
+  }
+  a.num_corners = (nn == 2) ? 4 : 3;
+  for (int k = 0; k < a.num_corners; ++k) {
+    const int i = cycle[k][0], j = cycle[k][1];
+    const double s = (isovalue - f[i]) / (f[j] - f[i]);
+    a.corners[k] = mesh.vertices[i] + s * (mesh.vertices[j] - mesh.vertices[i]);
+    a.edges[k] = {std::min(i, j), std::max(i, j)};
+  }
+  // Area and centroid from the fan (0,1,2), (0,2,3).
+  for (int k = 1; k + 1 < a.num_corners; ++k) {
+    const double area =
+        0.5 * (a.corners[k] - a.corners[0]).cross(a.corners[k + 1] - a.corners[0]).norm();
+    a.area += area;
+    a.centroid += area * (a.corners[0] + a.corners[k] + a.corners[k + 1]) / 3.0;
+  }
+  if (a.area > 0) {
+    a.centroid /= a.area;
+  } else {
+    for (int k = 0; k < a.num_corners; ++k) a.centroid += a.corners[k] / a.num_corners;
+  }
+  const std::array<Vec3, 4> v{mesh.vertices[tet[0]], mesh.vertices[tet[1]],
+                              mesh.vertices[tet[2]], mesh.vertices[tet[3]]};
+  a.normal = tet_gradient(v, {f[tet[0]], f[tet[1]], f[tet[2]], f[tet[3]]}).normalized();
+  return true;
+}
+
 }  // namespace
 
 std::vector<Isofacet> isofacets(const TetMesh& mesh, const std::vector<double>& f,
                                 double isovalue) {
-  std::vector<Isofacet> out;
-  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-    const auto& tet = mesh.tets[t];
-    int neg[4], pos[4], nn = 0, np = 0;
-    for (int i = 0; i < 4; ++i) (f[tet[i]] < isovalue ? neg[nn++] : pos[np++]) = tet[i];
-    if (nn == 0 || np == 0) continue;
-
+  // Blocks of tets in parallel, each writing its facets after those of the
+  // blocks before it: tet order, whatever the thread count.
+  constexpr int kBlock = 8192;
+  const int m = static_cast<int>(mesh.tets.size());
+  const int blocks = (m + kBlock - 1) / kBlock;
+  std::vector<std::vector<Isofacet>> found(blocks);
+  tbb::parallel_for(0, blocks, [&](int k) {
     Isofacet a;
-    a.tet = static_cast<int>(t);
-    a.negative_vertices = nn;
-    // Crossing edges in cyclic order around the facet.
-    std::array<std::array<int, 2>, 4> cycle;
-    if (nn == 1) {
-      cycle = {{{neg[0], pos[0]}, {neg[0], pos[1]}, {neg[0], pos[2]}, {0, 0}}};
-    } else if (np == 1) {
-      cycle = {{{neg[0], pos[0]}, {neg[1], pos[0]}, {neg[2], pos[0]}, {0, 0}}};
-    } else {
-      cycle = {{{neg[0], pos[0]}, {neg[0], pos[1]}, {neg[1], pos[1]}, {neg[1], pos[0]}}};
-    }
-    a.num_corners = (nn == 2) ? 4 : 3;
-    for (int k = 0; k < a.num_corners; ++k) {
-      const int i = cycle[k][0], j = cycle[k][1];
-      const double s = (isovalue - f[i]) / (f[j] - f[i]);
-      a.corners[k] = mesh.vertices[i] + s * (mesh.vertices[j] - mesh.vertices[i]);
-      a.edges[k] = {std::min(i, j), std::max(i, j)};
-    }
-    // Area and centroid from the fan (0,1,2), (0,2,3).
-    for (int k = 1; k + 1 < a.num_corners; ++k) {
-      const double area =
-          0.5 * (a.corners[k] - a.corners[0]).cross(a.corners[k + 1] - a.corners[0]).norm();
-      a.area += area;
-      a.centroid += area * (a.corners[0] + a.corners[k] + a.corners[k + 1]) / 3.0;
-    }
-    if (a.area > 0) {
-      a.centroid /= a.area;
-    } else {
-      for (int k = 0; k < a.num_corners; ++k) a.centroid += a.corners[k] / a.num_corners;
-    }
-    const std::array<Vec3, 4> v{mesh.vertices[tet[0]], mesh.vertices[tet[1]],
-                                mesh.vertices[tet[2]], mesh.vertices[tet[3]]};
-    a.normal = tet_gradient(v, {f[tet[0]], f[tet[1]], f[tet[2]], f[tet[3]]}).normalized();
-    out.push_back(a);
-  }
+    for (int t = k * kBlock; t < std::min(m, (k + 1) * kBlock); ++t)
+      if (isofacet(mesh, f, isovalue, t, a)) found[k].push_back(a);
+  });
+  std::size_t total = 0;
+  for (const auto& b : found) total += b.size();
+  std::vector<Isofacet> out;
+  out.reserve(total);
+  for (auto& b : found) out.insert(out.end(), b.begin(), b.end());
   return out;
 }
 

@@ -4,6 +4,10 @@
 
 #include "domain/domain_impl.h"
 
+#include <CGAL/Spatial_sort_traits_adapter_3.h>
+#include <CGAL/property_map.h>
+#include <CGAL/spatial_sort.h>
+
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
@@ -42,12 +46,12 @@ Domain& Domain::operator=(const Domain& other) {
   return *this;
 }
 
-std::size_t Domain::num_vertices() const { return impl_->vertices.size(); }
-std::size_t Domain::num_tets() const { return impl_->tets.size(); }
-const std::vector<Vec3>& Domain::vertices() const { return impl_->vertices; }
-const std::vector<std::array<int, 4>>& Domain::tets() const { return impl_->tets; }
+std::size_t Domain::num_vertices() const { return impl_->mesh.vertices.size(); }
+std::size_t Domain::num_tets() const { return impl_->mesh.tets.size(); }
+const std::vector<Vec3>& Domain::vertices() const { return impl_->mesh.vertices; }
+const std::vector<std::array<int, 4>>& Domain::tets() const { return impl_->mesh.tets; }
 const std::vector<std::array<int, 4>>& Domain::tet_neighbors() const { return impl_->neighbors; }
-TetMesh Domain::mesh() const { return TetMesh{impl_->vertices, impl_->tets}; }
+const TetMesh& Domain::mesh() const { return impl_->mesh; }
 const std::vector<double>& Domain::f() const { return impl_->f; }
 
 void Domain::set_f(std::vector<double> values) {
@@ -80,9 +84,9 @@ double Domain::interpolate(const Vec3& p, const std::vector<double>& values) con
 }
 
 double Domain::interpolate(const Location& at, const std::vector<double>& values) const {
-  if (at.tet < 0 || at.tet >= static_cast<int>(impl_->tets.size()))
+  if (at.tet < 0 || at.tet >= static_cast<int>(impl_->mesh.tets.size()))
     throw std::out_of_range("Domain::interpolate: the location is outside the domain");
-  const auto& tet = impl_->tets[at.tet];
+  const auto& tet = impl_->mesh.tets[at.tet];
   double s = 0;
   for (int i = 0; i < 4; ++i) s += at.barycentric[i] * values[tet[i]];
   return s;
@@ -90,33 +94,49 @@ double Domain::interpolate(const Location& at, const std::vector<double>& values
 
 std::vector<int> Domain::insert(const std::vector<Vec3>& points, std::uint8_t flags) {
   Impl& d = *impl_;
+  // In spatial order (CGAL's Hilbert sort): each point is located from the
+  // last one, and the new vertices are numbered along the curve, so that
+  // neighbours have near indices (the solvers' sparse products read the
+  // vertex arrays at the indices of a row: 1.2-1.5x faster than in the
+  // refiner's order at 400k vertices, docs/benchmarks.md).
+  using Item = std::pair<detail::Point, int>;
+  std::vector<Item> order;
+  order.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    order.emplace_back(to_point(points[i]), static_cast<int>(i));
+  CGAL::spatial_sort(
+      order.begin(), order.end(),
+      CGAL::Spatial_sort_traits_adapter_3<detail::Kernel, CGAL::First_of_pair_property_map<Item>>());
   // Values are taken from the current interpolant before any insertion, so
   // that the order of insertion does not change them.
   std::vector<double> values(points.size());
   Delaunay::Cell_handle hint;
-  for (std::size_t i = 0; i < points.size(); ++i) {
+  for (const auto& [point, i] : order) {
     hint = d.finite_cell_containing(points[i], hint);
     if (hint == Delaunay::Cell_handle())
       throw std::invalid_argument("Domain::insert: point outside the domain");
     values[i] = d.interpolate_in(hint, points[i], d.f);
   }
-  std::vector<int> added;
+  std::vector<int> label(points.size(), -1);
   Delaunay::Vertex_handle last;
-  for (std::size_t i = 0; i < points.size(); ++i) {
+  for (const auto& [point, i] : order) {
     Delaunay::Locate_type lt;
     int li, lj;
-    const auto c = d.dt.locate(to_point(points[i]), lt, li, lj,
+    const auto c = d.dt.locate(point, lt, li, lj,
                                last == Delaunay::Vertex_handle() ? Delaunay::Cell_handle()
                                                                  : last->cell());
     if (lt == Delaunay::VERTEX) continue;
-    const auto v = d.dt.insert(to_point(points[i]), lt, c, li, lj);
+    const auto v = d.dt.insert(point, lt, c, li, lj);
     v->info() = static_cast<int>(d.f.size());
-    added.push_back(v->info());
+    label[i] = v->info();
     d.f.push_back(values[i]);
     d.flags.push_back(flags);
     last = v;
   }
   d.reindex();
+  std::vector<int> added;
+  for (int l : label)
+    if (l >= 0) added.push_back(l);
   return added;
 }
 

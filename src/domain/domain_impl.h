@@ -21,8 +21,7 @@ struct Domain::Impl {
   Delaunay dt;
   std::vector<Delaunay::Vertex_handle> handles;  // dense index -> vertex
   std::vector<Delaunay::Cell_handle> cells;      // tet index -> cell
-  std::vector<Vec3> vertices;
-  std::vector<std::array<int, 4>> tets;
+  TetMesh mesh;  // the dense arrays: vertex i's position, tet t's corners
   std::vector<std::array<int, 4>> neighbors;
   std::vector<double> f;
   std::vector<std::uint8_t> flags;
@@ -34,6 +33,8 @@ struct Domain::Impl {
   void reindex() {
     const std::size_t n = dt.number_of_vertices();
     handles.assign(n, Delaunay::Vertex_handle());
+    std::vector<Vec3>& vertices = mesh.vertices;
+    std::vector<std::array<int, 4>>& tets = mesh.tets;
     vertices.resize(n);
     for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
       handles[v->info()] = v;
@@ -55,8 +56,9 @@ struct Domain::Impl {
 
   // Bounding sphere of the vertices (used when no domain sphere is known).
   void fit_sphere_to_vertices() {
-    if (vertices.empty()) return;
+    if (mesh.vertices.empty()) return;
     Eigen::AlignedBox3d box;
+    const std::vector<Vec3>& vertices = mesh.vertices;
     for (const Vec3& v : vertices) box.extend(v);
     center = box.center();
     radius = 0;

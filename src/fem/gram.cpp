@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace pdd {
 namespace {
@@ -31,11 +32,17 @@ struct Scratch {
 // depends only on j. Both run in parallel over j; the result is
 // deterministic.
 template <class Pattern, class Values>
+SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values);
+template <class Pattern, class Values>
 SparseMatrix accumulate_columns(int n, Pattern pattern, Values values) {
-  tbb::enumerable_thread_specific<Scratch> scratch([n] {
+  return accumulate_columns(n, n, pattern, values);
+}
+template <class Pattern, class Values>
+SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values) {
+  tbb::enumerable_thread_specific<Scratch> scratch([rows] {
     Scratch s;
-    s.marker.assign(n, -1);
-    s.accumulator.assign(n, 0.0);
+    s.marker.assign(rows, -1);
+    s.accumulator.assign(rows, 0.0);
     return s;
   });
   std::vector<long long> start(n + 1, 0);
@@ -56,7 +63,7 @@ SparseMatrix accumulate_columns(int n, Pattern pattern, Values values) {
   if (start[n] > std::numeric_limits<int>::max())
     throw std::length_error("fem: product has more non-zeros than an int index can hold");
 
-  SparseMatrix result(n, n);
+  SparseMatrix result(rows, n);
   result.resizeNonZeros(static_cast<Eigen::Index>(start[n]));
   for (int j = 0; j <= n; ++j) result.outerIndexPtr()[j] = static_cast<int>(start[j]);
   int* r_inner = result.innerIndexPtr();
@@ -87,38 +94,74 @@ SparseMatrix accumulate_columns(int n, Pattern pattern, Values values) {
   return result;
 }
 
-SparseMatrix compressed(const SparseMatrix& A) {
-  SparseMatrix c = A;
-  c.makeCompressed();
-  return c;
-}
+// A compressed copy of a column-major matrix and its three arrays.
+struct Columns {
+  SparseMatrix m;
+  const int* outer;
+  const int* inner;
+  const double* value;
+  explicit Columns(SparseMatrix a) : m(std::move(a)) {
+    m.makeCompressed();
+    outer = m.outerIndexPtr();
+    inner = m.innerIndexPtr();
+    value = m.valuePtr();
+  }
+};
 
 }  // namespace
 
 SparseMatrix gram_matrix(const SparseMatrix& A, const Eigen::VectorXd& d) {
   if (d.size() != A.rows()) throw std::invalid_argument("gram_matrix: d must have A.rows() entries");
-  const SparseMatrix Ac = compressed(A);
-  const SparseMatrix At = compressed(A.transpose());  // column k of At is row k of A
-  const int* a_outer = Ac.outerIndexPtr();
-  const int* a_inner = Ac.innerIndexPtr();
-  const double* a_value = Ac.valuePtr();
-  const int* t_outer = At.outerIndexPtr();
-  const int* t_inner = At.innerIndexPtr();
-  const double* t_value = At.valuePtr();
+  const Columns a(A);
+  const Columns t(A.transpose());  // column k of t is row k of A
   // Column j of A^T D A = sum over rows k of A in column j of d_k A_kj (row k of A)^T.
   return accumulate_columns(
       static_cast<int>(A.cols()),
       [&](int j, auto&& visit) {
-        for (int p = a_outer[j]; p < a_outer[j + 1]; ++p)
-          for (int q = t_outer[a_inner[p]]; q < t_outer[a_inner[p] + 1]; ++q) visit(t_inner[q]);
+        for (int p = a.outer[j]; p < a.outer[j + 1]; ++p)
+          for (int q = t.outer[a.inner[p]]; q < t.outer[a.inner[p] + 1]; ++q) visit(t.inner[q]);
       },
       [&](int j, auto&& add) {
-        for (int p = a_outer[j]; p < a_outer[j + 1]; ++p) {
-          const int k = a_inner[p];
-          const double w = d[k] * a_value[p];
-          for (int q = t_outer[k]; q < t_outer[k + 1]; ++q) add(t_inner[q], w * t_value[q]);
+        for (int p = a.outer[j]; p < a.outer[j + 1]; ++p) {
+          const int k = a.inner[p];
+          const double w = d[k] * a.value[p];
+          for (int q = t.outer[k]; q < t.outer[k + 1]; ++q) add(t.inner[q], w * t.value[q]);
         }
       });
+}
+
+SparseMatrix sparse_product(const SparseMatrix& A, const SparseMatrix& B) {
+  if (A.cols() != B.rows()) throw std::invalid_argument("sparse_product: sizes do not match");
+  const Columns a(A), b(B);
+  auto for_each_term = [&](int j, auto&& term) {
+    for (int pk = b.outer[j]; pk < b.outer[j + 1]; ++pk)
+      for (int ai = a.outer[b.inner[pk]]; ai < a.outer[b.inner[pk] + 1]; ++ai)
+        term(a.inner[ai], b.value[pk] * a.value[ai]);
+  };
+  return accumulate_columns(
+      static_cast<int>(A.rows()), static_cast<int>(B.cols()),
+      [&](int j, auto&& visit) { for_each_term(j, [&](int i, double) { visit(i); }); },
+      [&](int j, auto&& add) { for_each_term(j, add); });
+}
+
+SparseMatrix galerkin_product(const SparseMatrix& P, const SparseMatrix& A) {
+  if (A.rows() != A.cols() || P.rows() != A.rows())
+    throw std::invalid_argument("galerkin_product: P must have as many rows as A");
+  const Columns p(P), a(A);
+  const Columns r(P.transpose());  // column i of r is row i of P
+  // Column j = sum over k in column j of P of P_kj sum over i of A_ik (row i of P)^T.
+  auto for_each_term = [&](int j, auto&& term) {
+    for (int pk = p.outer[j]; pk < p.outer[j + 1]; ++pk)
+      for (int ai = a.outer[p.inner[pk]]; ai < a.outer[p.inner[pk] + 1]; ++ai) {
+        const int i = a.inner[ai];
+        const double w = p.value[pk] * a.value[ai];
+        for (int q = r.outer[i]; q < r.outer[i + 1]; ++q) term(r.inner[q], w * r.value[q]);
+      }
+  };
+  return accumulate_columns(
+      static_cast<int>(P.cols()),
+      [&](int j, auto&& visit) { for_each_term(j, [&](int i, double) { visit(i); }); },
+      [&](int j, auto&& add) { for_each_term(j, add); });
 }
 
 SparseMatrix hessian_energy(const TetMesh& mesh) {

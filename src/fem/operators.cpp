@@ -33,6 +33,18 @@ Eigen::VectorXd vertex_masses(const TetMesh& mesh) {
   return mass;
 }
 
+Eigen::VectorXd gradient_transpose_times(const TetMesh& mesh, const std::vector<Vec3>& per_tet) {
+  if (per_tet.size() != mesh.tets.size())
+    throw std::invalid_argument("gradient_transpose_times: one vector per tet is required");
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(mesh.vertices.size()));
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    if (per_tet[t].isZero(0)) continue;
+    const TetGradients g = detail::tet_gradients(mesh, static_cast<int>(t));
+    for (int i = 0; i < 4; ++i) out[mesh.tets[t][i]] += g.grad[i].dot(per_tet[t]);
+  }
+  return out;
+}
+
 SparseMatrix gradient_matrix(const TetMesh& mesh) {
   // Column v holds rows 3t..3t+2 for every tet t around v, already sorted
   // because stars list tets in increasing order: the compressed arrays are

@@ -54,6 +54,37 @@ class QuadraticAccumulator {
     });
   }
 
+  // The same for full 3x3 blocks: column(j, add, adding) calls add(i, m) to
+  // add m to block (i, j). It is called twice per column, first to find the
+  // blocks (adding false: add only records), then to add (adding true: the
+  // time to add to b's entries of j too).
+  template <class Column>
+  void add_coupled_by_columns(Column column) {
+    const int n = static_cast<int>(offsets_.size()) - 1;
+    detail::PerThreadTable slots = detail::per_thread_table(n);
+    std::vector<char> touched(rows_.size(), 0);
+    auto each_column = [&](auto&& visit, bool adding) {
+      tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
+        std::vector<int>& slot = slots.local();
+        for (int j = r.begin(); j < r.end(); ++j) {
+          for (int s = offsets_[j]; s < offsets_[j + 1]; ++s) slot[rows_[s]] = s;
+          column(j, [&](int i, const Eigen::Matrix3d& m) {
+            const int s = slot[i];
+            if (s < offsets_[j] || s >= offsets_[j + 1]) no_block();
+            visit(s, m);
+          }, adding);
+        }
+      });
+    };
+    each_column([&](int s, const Eigen::Matrix3d&) { touched[s] = 1; }, false);
+    for (std::size_t s = 0; s < touched.size(); ++s)
+      if (touched[s] && coupled_index_[s] < 0) {
+        coupled_index_[s] = static_cast<int>(coupled_.size());
+        coupled_.push_back(Eigen::Matrix3d::Zero());
+      }
+    each_column([&](int s, const Eigen::Matrix3d& m) { coupled_[coupled_index_[s]] += m; }, true);
+  }
+
   // The tets around each vertex, in increasing order.
   const detail::VertexStars& stars() const { return stars_; }
 

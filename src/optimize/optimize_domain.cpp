@@ -5,10 +5,10 @@
 #include <pdd/optimize.h>
 
 #include "common/nearest_neighbors.h"
-#include "optimize/block_jacobi.h"
+#include "common/parallel_kernels.h"
 #include "optimize/energy_terms.h"
 
-#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/Eigenvalues>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -32,51 +32,90 @@ void check(const OptimizerOptions& o) {
     fail("min_distance_ratio must be in [0, 1)", o.min_distance_ratio);
 }
 
-// The minimizer of E over the free vertices, by CG on the displacement from
-// x0 (the same iterates as CG started from x0, with a stopping test relative
-// to the initial residual, which does not depend on where the domain sits).
+// The inverse of each vertex's 3x3 diagonal block of A (its small eigenvalues
+// raised to 1e-12 of its largest: a vertex moved by one term only has a
+// rank-deficient block), identity for the fixed vertices: the block-Jacobi
+// preconditioner. Scalar Jacobi is not invariant to rotations (the mid-edge
+// term couples x, y and z through n n^T) and converges slowly where that term
+// makes a block strongly anisotropic.
+std::vector<Eigen::Matrix3d> block_jacobi(const Eigen::SparseMatrix<double>& A,
+                                          const std::vector<bool>& fixed) {
+  const Eigen::Index n = A.cols() / 3;
+  std::vector<Eigen::Matrix3d> inverse(n, Eigen::Matrix3d::Identity());
+  tbb::parallel_for(Eigen::Index(0), n, [&](Eigen::Index v) {
+    if (fixed[v]) return;
+    Eigen::Matrix3d block = Eigen::Matrix3d::Zero();
+    for (int k = 0; k < 3; ++k)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A, 3 * v + k); it; ++it)
+        if (it.row() / 3 == v) block(it.row() % 3, k) = it.value();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(block);
+    const Eigen::Vector3d lambda = eigen.eigenvalues();
+    const double largest = lambda.cwiseAbs().maxCoeff();
+    if (!(largest > 0)) return;
+    const Eigen::Vector3d inv = lambda.cwiseMax(1e-12 * largest).cwiseInverse();
+    inverse[v] = eigen.eigenvectors() * inv.asDiagonal() * eigen.eigenvectors().transpose();
+  });
+  return inverse;
+}
+
+// The minimizer of E over the free vertices: preconditioned CG on A x = b
+// from x0 with the fixed vertices' coordinates held (their components of the
+// residual and of every direction are zero), stopped at a residual relative
+// to the initial one, which does not depend on where the domain sits.
 Eigen::VectorXd minimize(const DomainEnergy& energy, const Eigen::VectorXd& x0,
                          const OptimizerOptions& options, OptimizerReport& report) {
-  const Eigen::Index n = x0.size() / 3;
-  std::vector<int> free_index(n, -1);
-  int free = 0;
-  for (Eigen::Index v = 0; v < n; ++v)
-    if (!energy.fixed[v]) free_index[v] = free++;
-  if (free == 0) return x0;
-
-  // A_ff delta = -(A x0 - b)_f: the fixed vertices do not move. A_ff keeps
-  // the rows and columns of the free vertices, in order.
-  const Eigen::VectorXd residual = energy.b - energy.A * x0;
-  Eigen::VectorXd rhs(3 * free);
-  Eigen::SparseMatrix<double> A_ff(3 * free, 3 * free);
-  A_ff.reserve(energy.A.nonZeros());
-  for (Eigen::Index j = 0; j < energy.A.outerSize(); ++j) {
-    const int fj = free_index[j / 3];
-    if (fj < 0) continue;
-    const Eigen::Index column = 3 * fj + j % 3;
-    rhs[column] = residual[j];
-    A_ff.startVec(column);
-    for (Eigen::SparseMatrix<double>::InnerIterator it(energy.A, j); it; ++it) {
-      const int fi = free_index[it.row() / 3];
-      if (fi >= 0) A_ff.insertBack(3 * fi + it.row() % 3, column) = it.value();
-    }
+  const Eigen::SparseMatrix<double>& A = energy.A;
+  const Eigen::Index n = x0.size();
+  const std::vector<Eigen::Matrix3d> inverse = block_jacobi(A, energy.fixed);
+  auto mask = [&](Eigen::VectorXd& v) {
+    detail::for_blocks(n / 3, [&](Eigen::Index begin, Eigen::Index end) {
+      for (Eigen::Index i = begin; i < end; ++i)
+        if (energy.fixed[i]) v.segment<3>(3 * i).setZero();
+    });
+  };
+  auto precondition = [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) {
+    z.resize(n);
+    detail::for_blocks(n / 3, [&](Eigen::Index begin, Eigen::Index end) {
+      for (Eigen::Index i = begin; i < end; ++i) z.segment<3>(3 * i) = inverse[i] * r.segment<3>(3 * i);
+    });
+  };
+  Eigen::VectorXd x = x0, r, z, p, q;
+  detail::symmetric_product(A, x, q);
+  r = energy.b - q;
+  mask(r);
+  const double r0 = std::sqrt(detail::deterministic_dot(r, r));
+  if (r0 == 0) return x;
+  precondition(r, z);
+  p = z;
+  double rz = detail::deterministic_dot(r, z);
+  int it = 0;
+  double residual = 1;
+  while (it < options.cg_max_iterations) {
+    detail::symmetric_product(A, p, q);
+    mask(q);
+    const double pq = detail::deterministic_dot(p, q);
+    if (!(pq > 0)) break;
+    const double alpha = rz / pq;
+    detail::for_blocks(n, [&](Eigen::Index begin, Eigen::Index end) {
+      for (Eigen::Index i = begin; i < end; ++i) {
+        x[i] += alpha * p[i];
+        r[i] -= alpha * q[i];
+      }
+    });
+    ++it;
+    residual = std::sqrt(detail::deterministic_dot(r, r)) / r0;
+    if (residual <= options.cg_tolerance) break;
+    precondition(r, z);
+    const double rz_next = detail::deterministic_dot(r, z);
+    const double beta = rz_next / rz;
+    rz = rz_next;
+    detail::for_blocks(n, [&](Eigen::Index begin, Eigen::Index end) {
+      for (Eigen::Index i = begin; i < end; ++i) p[i] = z[i] + beta * p[i];
+    });
   }
-  A_ff.finalize();
-
-  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
-                           optimize_detail::BlockJacobiPreconditioner>
-      cg;
-  cg.setTolerance(options.cg_tolerance);
-  cg.setMaxIterations(options.cg_max_iterations);
-  cg.compute(A_ff);
-  const Eigen::VectorXd delta = cg.solve(rhs);
-  report.cg_iterations = static_cast<int>(cg.iterations());
-  report.cg_residual = cg.error();
-  if (!delta.allFinite()) throw SolverError("optimizer: the conjugate gradient diverged");
-
-  Eigen::VectorXd x = x0;
-  for (Eigen::Index v = 0; v < n; ++v)
-    if (free_index[v] >= 0) x.segment<3>(3 * v) += delta.segment<3>(3 * free_index[v]);
+  report.cg_iterations = it;
+  report.cg_residual = residual;
+  if (!x.allFinite()) throw SolverError("optimizer: the conjugate gradient diverged");
   return x;
 }
 

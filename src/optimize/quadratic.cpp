@@ -6,7 +6,7 @@
 namespace pdd::optimize_detail {
 
 QuadraticAccumulator::QuadraticAccumulator(const Domain& domain) {
-  const TetMesh mesh = domain.mesh();
+  const TetMesh& mesh = domain.mesh();
   const int n = static_cast<int>(mesh.vertices.size());
   stars_ = detail::vertex_stars(mesh);
   const std::vector<std::vector<int>> rings = detail::one_rings(mesh, stars_);

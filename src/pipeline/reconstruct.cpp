@@ -68,28 +68,12 @@ std::shared_ptr<const SizingField> make_sizing(const PointSet& points,
   return coarser_away_from_data(std::move(field), points, options.away_from_data);
 }
 
-// The solver of the loop's solves on large domains (LoopSolveOptions), or
-// none when they are solved like the final one.
-std::unique_ptr<ImplicitSolver> make_loop_solver(const ReconstructOptions& options) {
-  const LoopSolveOptions& loop = options.loop_solve;
-  if (!(loop.tolerance >= 0))
-    throw InputError("reconstruct: the loop solve tolerance must be >= 0, got " +
-                     std::to_string(loop.tolerance));
-  if (loop.tolerance == 0 || options.solver.kind == SolverKind::kSpectral) return nullptr;
-  SolverOptions solver = options.solver;
-  solver.linear.method = LinearMethod::kConjugateGradient;
-  solver.linear.preconditioner = Preconditioner::kJacobi;
-  solver.linear.cg_tolerance = std::max(loop.tolerance, solver.linear.cg_tolerance);
-  return make_solver(solver);
-}
-
 class Run {
  public:
   Run(const PointSet& points, const ReconstructOptions& options)
       : points_(points),
         options_(options),
         solver_(make_solver(options.solver)),
-        loop_solver_(make_loop_solver(options)),
         rng_(options.seed),
         start_(Clock::now()) {}
 
@@ -103,14 +87,11 @@ class Run {
     Domain domain = initial_domain();
     const auto sizing = make_sizing(points_, options_);
     bool refined_last = false;  // the domain changed since it was last solved on
-    bool loose_last = false;    // the last solve stopped at LoopSolveOptions::tolerance
     for (int it = 1; it <= options_.max_iterations; ++it) {
       IterationStats stats;
       if (refined_last) optimize(domain, it, stats, options_.optimizer_rounds);
-      ImplicitSolver& solver = loop_solver(domain, it);
-      solve(domain, it, solver, stats);
+      solve(domain, it, stats);
       refined_last = false;
-      loose_last = &solver != solver_.get();
       const bool over_budget = domain.num_vertices() >= options_.max_vertices;
       bool converged = sizing_met(isofacet_area_stats(domain, *sizing));
       if (!over_budget && !converged) {
@@ -127,7 +108,7 @@ class Run {
                     options_.min_refined_fraction * refined.crossing_tets;
       }
       const bool last = over_budget || converged || it == options_.max_iterations;
-      if (last && !refined_last && !loose_last)
+      if (last && !refined_last)
         return finish_with(std::move(domain), std::move(stats));
       result_.iterations.push_back(stats);
       if (last) break;
@@ -142,7 +123,7 @@ class Run {
     Domain domain = initial_domain();
     const auto sizing = make_sizing(points_, options_);
     IterationStats first;
-    solve(domain, 1, *solver_, first);
+    solve(domain, 1, first);
     result_.iterations.push_back(first);
     for (int it = 1; it <= options_.max_iterations; ++it) {
       if (domain.num_vertices() >= options_.max_vertices ||
@@ -195,24 +176,16 @@ class Run {
     if (!options_.progress(p)) throw Cancelled{};
   }
 
-  // The solver for iteration `iteration` of the loop: the loop solver once
-  // there is a previous f and the domain is large enough.
-  ImplicitSolver& loop_solver(const Domain& domain, int iteration) {
-    const bool loose = loop_solver_ && iteration > 1 &&
-                       domain.num_vertices() >= options_.loop_solve.min_vertices;
-    return loose ? *loop_solver_ : *solver_;
-  }
-
   // Solves on the domain (warm-started from the current f) and measures the
   // isosurface; the contour is kept for the final iteration.
-  void solve(Domain& domain, int iteration, ImplicitSolver& solver, IterationStats& stats) {
+  void solve(Domain& domain, int iteration, IterationStats& stats) {
     stats.iteration = iteration;
     report("solve", iteration, domain);
     auto t = Clock::now();
     const std::vector<double> warm = domain.f();
-    domain.set_f(solver.solve(domain, points_, &warm));
+    domain.set_f(solver_->solve(domain, points_, &warm));
     stats.seconds_solve = seconds_since(t);
-    stats.solver = solver.stats();
+    stats.solver = solver_->stats();
 
     report("contour", iteration, domain);
     t = Clock::now();
@@ -273,10 +246,9 @@ class Run {
   // its isosurface.
   Result finish(Domain domain, bool optimize_first = false) {
     const int last = result_.iterations.empty() ? 1 : result_.iterations.back().iteration + 1;
-    loop_solver_.reset();  // its state is not needed any more: memory for the final solve
     IterationStats stats;
     if (optimize_first) optimize(domain, last, stats, options_.optimizer_rounds);
-    solve(domain, last, *solver_, stats);
+    solve(domain, last, stats);
     return finish_with(std::move(domain), std::move(stats));
   }
 
@@ -293,8 +265,7 @@ class Run {
 
   const PointSet& points_;
   const ReconstructOptions& options_;
-  std::unique_ptr<ImplicitSolver> solver_;       // every solve but the loose loop ones
-  std::unique_ptr<ImplicitSolver> loop_solver_;  // LoopSolveOptions; null when off
+  std::unique_ptr<ImplicitSolver> solver_;  // every solve, so that its multigrid keeps the levels
   std::mt19937_64 rng_;
   Clock::time_point start_;
   IsoSurface contour_;

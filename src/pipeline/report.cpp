@@ -39,6 +39,7 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
         << ", \"parsimony\": " << number(s.parsimony) << ", \"isovertices\": " << s.isovertices
         << ", \"triangles\": " << s.triangles << ", \"solver_method\": \"" << s.solver.method
         << "\", \"solver_iterations\": " << s.solver.iterations
+        << ", \"solver_levels\": " << s.solver.levels
         << ", \"solver_residual\": " << number(s.solver.residual)
         << ", \"ssd_alpha\": " << number(s.solver.value_weight)
         << ", \"optimizer_cg_iterations\": " << s.optimizer_cg_iterations

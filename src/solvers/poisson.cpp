@@ -4,6 +4,8 @@
 #include "solvers/normal_field.h"
 #include "solvers/problem.h"
 
+#include "common/parallel_kernels.h"
+
 #include <pdd/errors.h>
 
 namespace pdd::detail {
@@ -12,7 +14,7 @@ namespace {
 class PoissonSolver final : public ImplicitSolver {
  public:
   PoissonSolver(const PoissonOptions& options, const LinearSolverOptions& linear)
-      : options_(options), linear_(linear, resolve_route(linear, SolverKind::kPoisson)) {
+      : options_(options), linear_(linear) {
     if (!(options.alpha >= 0)) throw InputError("Poisson solver: alpha must be >= 0");
     if (!(options.kernel_size >= 0)) throw InputError("Poisson solver: kernel size must be >= 0");
     if (options.kernel_size == 0 && !(options.kernel_spacing > 0))
@@ -34,17 +36,17 @@ class PoissonSolver final : public ImplicitSolver {
     // the sign that makes Eq. (14) the normal equations of Eq. (13)).
     const std::vector<Vec3> field = smoothed_normal_field(p.mesh, points.points, p.normals, sigma);
     const Eigen::VectorXd volume = tet_volumes(p.mesh);
-    Eigen::VectorXd weighted(3 * volume.size());
-    for (Eigen::Index t = 0; t < volume.size(); ++t)
-      weighted.segment<3>(3 * t) = volume[t] * field[t];
-    const Eigen::VectorXd b = gradient_matrix(p.mesh).transpose() * weighted;
+    std::vector<Vec3> weighted(field.size());
+    for (std::size_t t = 0; t < field.size(); ++t) weighted[t] = volume[static_cast<Eigen::Index>(t)] * field[t];
+    const Eigen::VectorXd b = gradient_transpose_times(p.mesh, weighted);
 
     // Eq. (14) in units of l: [L + alpha l / |X| Phi^T Phi] F = Div N~.
     const SparseMatrix L = cotangent_laplacian(p.mesh);
     SparseMatrix A = L;
     if (options_.alpha > 0) {
       const double w = options_.alpha * p.length / static_cast<double>(p.num_points);
-      A += w * gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
+      const SparseMatrix values = gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
+      if (!add_into(A, values, w)) A += w * values;
     } else {
       // The original Poisson equation: f is defined up to a constant, fixed
       // by the penalty L_00 f_0^2, which does not change the minimizers of
@@ -53,7 +55,7 @@ class PoissonSolver final : public ImplicitSolver {
     }
     stats_.assembly_seconds = seconds_since(start);
 
-    linear_.compute(A);
+    linear_.compute(A, p.mesh.vertices);
     const auto solve_start = Clock::now();
     Eigen::VectorXd f = warm_start_vector(warm_start, p.mesh.vertices.size());
     linear_.solve(b, f);
@@ -61,9 +63,10 @@ class PoissonSolver final : public ImplicitSolver {
       stats_.median_shift = median_at_samples(p.Phi, f);
       f.array() -= stats_.median_shift;
     }
-    stats_.solve_seconds = seconds_since(solve_start) - linear_.factorize_seconds_in_solves();
+    stats_.solve_seconds = seconds_since(solve_start);
 
     linear_.report(stats_);
+    linear_.release();
     stats_.num_vertices = p.mesh.vertices.size();
     stats_.num_points = p.num_points;
     stats_.nonzeros = static_cast<std::size_t>(A.nonZeros());

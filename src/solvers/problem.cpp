@@ -17,8 +17,7 @@ Problem make_problem(const Domain& domain, const PointSet& points, const std::st
   if (points.normals.size() != points.points.size())
     throw InputError(solver + ": " + std::to_string(points.normals.size()) + " normals for " +
                      std::to_string(points.points.size()) + " points");
-  Problem p;
-  p.mesh = domain.mesh();
+  Problem p{domain.mesh()};
   try {
     p.locations = locate_points(domain, points.points);
   } catch (const InputError& e) {
@@ -58,29 +57,6 @@ std::vector<int> outer_vertices(const Domain& domain) {
   for (int v = 0; v < static_cast<int>(hull.size()); ++v)
     if (hull[v]) out.push_back(v);
   return out;
-}
-
-LinearRoute resolve_route(const LinearSolverOptions& options, SolverKind kind) {
-  // Measured (bench/solvers_bench.cpp, docs/benchmarks.md): the second-order
-  // Poisson system is solved fastest by CG with the Jacobi preconditioner
-  // from 10k vertices up. The fourth-order SSD and spectral systems (two-ring
-  // Hessian / bi-Laplacian terms) need hundreds (incomplete Cholesky) to
-  // thousands (Jacobi) of CG iterations from scratch, where CHOLMOD is
-  // faster; from the previous iteration's solution, as in the progressive
-  // loop, CG with incomplete Cholesky takes about the time of CHOLMOD with
-  // half its memory. So kAuto runs CG when there is a warm start and CHOLMOD
-  // when there is none (the first solve, Lanczos' inner solves) or CG stalls.
-  LinearRoute route;
-  route.method = options.method;
-  if (route.method == LinearMethod::kAuto) {
-    route.method = LinearMethod::kConjugateGradient;
-    if (kind != SolverKind::kPoisson) route.cholmod_after = options.cg_fallback_iterations;
-  }
-  route.preconditioner = options.preconditioner;
-  if (route.preconditioner == Preconditioner::kAuto)
-    route.preconditioner =
-        kind == SolverKind::kPoisson ? Preconditioner::kJacobi : Preconditioner::kIncompleteCholesky;
-  return route;
 }
 
 Eigen::VectorXd warm_start_vector(const std::vector<double>* warm_start, std::size_t n) {

@@ -20,7 +20,7 @@ inline double seconds_since(Clock::time_point start) {
 
 // The samples inside the domain.
 struct Problem {
-  TetMesh mesh;                    // domain.mesh()
+  const TetMesh& mesh;             // domain.mesh()
   std::vector<Location> locations; // tet and barycentric coordinates of each sample
   SparseMatrix Phi;                // sampling matrix, |X| x |V|
   std::vector<Vec3> normals;       // the samples' normals scaled to unit length
@@ -39,10 +39,6 @@ double median_at_samples(const SparseMatrix& Phi, const Eigen::VectorXd& f);
 // Vertices where f must be positive (outside): those flagged on the domain's
 // bounding sphere, or, when none is flagged, those on the convex hull.
 std::vector<int> outer_vertices(const Domain& domain);
-
-// The linear route for `kind`, kAuto resolved to the one measured fastest
-// (docs/benchmarks.md, "Solvers").
-LinearRoute resolve_route(const LinearSolverOptions& options, SolverKind kind);
 
 // The warm start as an Eigen vector (empty if absent); std::invalid_argument
 // when it does not have one value per vertex.

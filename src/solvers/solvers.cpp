@@ -25,17 +25,15 @@ LinearMethod parse_linear_method(const std::string& name) {
   std::string lower = name;
   std::transform(lower.begin(), lower.end(), lower.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (lower == "auto") return LinearMethod::kAuto;
+  if (lower == "multigrid") return LinearMethod::kMultigrid;
   if (lower == "cholmod") return LinearMethod::kCholmod;
-  if (lower == "cg") return LinearMethod::kConjugateGradient;
-  throw InputError("unknown linear solver \"" + name + "\" (expected auto, cholmod or cg)");
+  throw InputError("unknown linear solver \"" + name + "\" (expected multigrid or cholmod)");
 }
 
 std::string to_string(LinearMethod method) {
   switch (method) {
-    case LinearMethod::kAuto: return "auto";
+    case LinearMethod::kMultigrid: return "multigrid";
     case LinearMethod::kCholmod: return "cholmod";
-    case LinearMethod::kConjugateGradient: return "cg";
   }
   return "unknown";
 }

@@ -43,7 +43,7 @@ class SpectralSolver final : public ImplicitSolver {
  public:
   SpectralSolver(const SpectralOptions& options, const LinearSolverOptions& linear)
       : options_(options),
-        linear_(linear, resolve_route(linear, SolverKind::kSpectral)) {
+        linear_(linear) {
     if (!(options.alpha > 0) || !(options.beta >= 0) || !(options.gamma >= 0) ||
         !(options.mu >= 0))
       throw InputError("spectral solver: alpha must be > 0 and beta, gamma, mu >= 0");
@@ -95,7 +95,7 @@ class SpectralSolver final : public ImplicitSolver {
     }
     stats_.assembly_seconds = seconds_since(start);
 
-    linear_.compute(B);
+    linear_.compute(B, p.mesh.vertices);
     const auto solve_start = Clock::now();
     Spectra::SparseSymMatProd<double> a_op(A);
     ConstraintOperator b_op(B, linear_);
@@ -139,12 +139,13 @@ class SpectralSolver final : public ImplicitSolver {
       stats_.median_shift = median_at_samples(p.Phi, f);
       f.array() -= stats_.median_shift;
     }
-    stats_.solve_seconds = seconds_since(solve_start) - linear_.factorize_seconds_in_solves();
+    stats_.solve_seconds = seconds_since(solve_start);
 
     stats_.method = std::string("lanczos+") + linear_.method_name();
     stats_.eigenvalue = lambda;
-    stats_.factorize_seconds = linear_.factorize_seconds();
-    stats_.reused_analysis = linear_.reused_analysis();
+    stats_.factorize_seconds = linear_.setup_seconds();
+    stats_.levels = linear_.levels();
+    linear_.release();
     stats_.num_vertices = p.mesh.vertices.size();
     stats_.num_points = p.num_points;
     stats_.nonzeros = static_cast<std::size_t>(B.nonZeros());

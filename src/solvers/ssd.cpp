@@ -3,6 +3,8 @@
 #include "solvers/linear_solver.h"
 #include "solvers/problem.h"
 
+#include "common/parallel_kernels.h"
+
 #include <pdd/errors.h>
 
 namespace pdd::detail {
@@ -18,40 +20,52 @@ SsdOptions resolved(SsdOptions options, const Problem& p, const PointSet& points
   return options;
 }
 
+// Y added into X (X += w Y) in place when X has room for Y's entries, as
+// the two-ring Hessian term has for the one-ring ones; a new sum otherwise.
+void add_to(SparseMatrix& X, const SparseMatrix& Y, double w) {
+  if (!add_into(X, Y, w)) X += w * Y;
+}
+
 // The system A f = b of Eq. (15) for a located problem.
 LinearSystem ssd_system(const Problem& p, const SsdOptions& options) {
   const double nx = static_cast<double>(p.num_points);
   const std::size_t nt = p.mesh.tets.size();
 
   // S^T S counts the samples in each tet and S^T N sums their normals, so
-  // G^T S^T S G = G^T diag(count_t I) G and G^T S^T N = G^T (sum of n_p per tet).
+  // G^T S^T S G = G^T diag(count_t I) G and G^T S^T N = G^T (sum of n_p per tet):
+  // b_v = beta / |X| sum over the tets t of v of grad(phi_v)|_t . (sum of n_p in t).
   std::vector<Eigen::Matrix3d> count(nt, Eigen::Matrix3d::Zero());
-  Eigen::VectorXd normal_sum = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(nt));
+  std::vector<Vec3> normal_sum(nt, Vec3::Zero());
   for (std::size_t i = 0; i < p.num_points; ++i) {
     const int t = p.locations[i].tet;
     count[t] += Eigen::Matrix3d::Identity();
-    normal_sum.segment<3>(3 * t) += p.normals[i];
+    normal_sum[t] += p.normals[i];
   }
   const double beta = options.beta / nx;
-  const Eigen::VectorXd b = beta * (gradient_matrix(p.mesh).transpose() * normal_sum);
+  const Eigen::VectorXd b = beta * gradient_transpose_times(p.mesh, normal_sum);
 
   // Eq. (15) in units of l: f(p) is a length (1/l^2) and the Hessian an
-  // inverse length (l^2); |T| is the volume of the domain, as in CT11.
-  SparseMatrix stiffness = weighted_stiffness(p.mesh, count);
-  SparseMatrix A = beta * stiffness;
-  A += (options.alpha / (p.length * p.length * nx)) *
-       gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
+  // inverse length (l^2); |T| is the volume of the domain, as in CT11. The
+  // one-ring terms are added into the two-ring Hessian term.
+  SparseMatrix A;
+  const SparseMatrix stiffness = weighted_stiffness(p.mesh, count);
+  const SparseMatrix values = gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
+  const double alpha = options.alpha / (p.length * p.length * nx);
   if (options.gamma > 0) {
-    const double gamma = options.gamma * p.length * p.length / tet_volumes(p.mesh).sum();
-    A += gamma * hessian_energy(p.mesh);  // H^T M~_V^-1 H
+    A = hessian_energy(p.mesh);
+    A *= options.gamma * p.length * p.length / tet_volumes(p.mesh).sum();  // H^T M~_V^-1 H
+    add_to(A, stiffness, beta);
+  } else {
+    A = beta * stiffness;
   }
-  return {std::move(A), b, std::move(stiffness)};
+  add_to(A, values, alpha);
+  return {std::move(A), std::move(b)};
 }
 
 class SsdSolver final : public ImplicitSolver {
  public:
   SsdSolver(const SsdOptions& options, const LinearSolverOptions& linear)
-      : options_(options), linear_(linear, resolve_route(linear, SolverKind::kSsd)) {
+      : options_(options), linear_(linear) {
     if (!(options.alpha >= 0) || !(options.beta > 0) || !(options.gamma >= 0))
       throw InputError(
           "SSD solver: alpha must be >= 0 (0: from the noise), beta > 0 and gamma >= 0");
@@ -68,13 +82,14 @@ class SsdSolver final : public ImplicitSolver {
     const Eigen::VectorXd& b = system.b;
     stats_.assembly_seconds = seconds_since(start);
 
-    linear_.compute(A, &system.ordering_pattern);
+    linear_.compute(A, p.mesh.vertices);
     const auto solve_start = Clock::now();
     Eigen::VectorXd f = warm_start_vector(warm_start, p.mesh.vertices.size());
     linear_.solve(b, f);
-    stats_.solve_seconds = seconds_since(solve_start) - linear_.factorize_seconds_in_solves();
+    stats_.solve_seconds = seconds_since(solve_start);
 
     linear_.report(stats_);
+    linear_.release();
     stats_.num_vertices = p.mesh.vertices.size();
     stats_.num_points = p.num_points;
     stats_.nonzeros = static_cast<std::size_t>(A.nonZeros());

@@ -1,0 +1,111 @@
+// Private to src/: deterministic parallel kernels on Eigen vectors and sparse
+// matrices stored by columns. Work is split in blocks fixed by the length
+// alone and partial sums are added in block order, so results do not depend
+// on the number of threads. Eigen's own products are serial or, with OpenMP,
+// sum in an order that follows the thread count.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <vector>
+
+namespace pdd::detail {
+
+constexpr Eigen::Index kKernelBlock = 4096;  // entries per task and per partial sum
+
+// body(begin, end) over [0, n) in blocks, in parallel.
+template <class Body>
+void for_blocks(Eigen::Index n, Body body) {
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, n, kKernelBlock),
+                    [&](const tbb::blocked_range<Eigen::Index>& r) { body(r.begin(), r.end()); });
+}
+
+// The sum of term(i) over [0, n): partial sums over fixed blocks, added in order.
+template <class Term>
+double deterministic_sum(Eigen::Index n, Term term) {
+  const Eigen::Index blocks = (n + kKernelBlock - 1) / kKernelBlock;
+  std::vector<double> partial(static_cast<std::size_t>(blocks), 0.0);
+  tbb::parallel_for(Eigen::Index(0), blocks, [&](Eigen::Index k) {
+    double s = 0;
+    const Eigen::Index end = std::min(n, (k + 1) * kKernelBlock);
+    for (Eigen::Index i = k * kKernelBlock; i < end; ++i) s += term(i);
+    partial[static_cast<std::size_t>(k)] = s;
+  });
+  double s = 0;
+  for (double p : partial) s += p;
+  return s;
+}
+
+inline double deterministic_dot(const Eigen::VectorXd& x, const Eigen::VectorXd& y) {
+  return deterministic_sum(x.size(), [&](Eigen::Index i) { return x[i] * y[i]; });
+}
+
+// y = M^T x: y_j = column j of M . x.
+inline void transposed_product(const Eigen::SparseMatrix<double>& M, const Eigen::VectorXd& x,
+                               Eigen::VectorXd& y) {
+  y.resize(M.cols());
+  const int* outer = M.outerIndexPtr();
+  const int* inner = M.innerIndexPtr();
+  const double* value = M.valuePtr();
+  for_blocks(M.cols(), [&](Eigen::Index begin, Eigen::Index end) {
+    for (Eigen::Index j = begin; j < end; ++j) {
+      double s = 0;
+      for (int p = outer[j]; p < outer[j + 1]; ++p) s += value[p] * x[inner[p]];
+      y[j] = s;
+    }
+  });
+}
+
+// y = A x for a symmetric A with every entry stored (A = A^T).
+inline void symmetric_product(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& x,
+                              Eigen::VectorXd& y) {
+  transposed_product(A, x, y);
+}
+
+}  // namespace pdd::detail
+
+namespace pdd::detail {
+
+// X += w Y in place, column by column in parallel, when every entry of Y has
+// a place in X (compressed, rows sorted); returns false, X unchanged, when
+// one has not. A sum of operators whose patterns nest (one-ring terms into a
+// two-ring one) then needs no new allocation.
+inline bool add_into(Eigen::SparseMatrix<double>& X, const Eigen::SparseMatrix<double>& Y,
+                     double w) {
+  if (X.rows() != Y.rows() || X.cols() != Y.cols() || !X.isCompressed() || !Y.isCompressed())
+    return false;
+  const int* xo = X.outerIndexPtr();
+  const int* xi = X.innerIndexPtr();
+  double* xv = X.valuePtr();
+  const int* yo = Y.outerIndexPtr();
+  const int* yi = Y.innerIndexPtr();
+  const double* yv = Y.valuePtr();
+  const Eigen::Index n = X.cols();
+  // First check, so that X is left as it was when a place is missing.
+  const double missing = deterministic_sum(n, [&](Eigen::Index j) {
+    int p = xo[j];
+    for (int q = yo[j]; q < yo[j + 1]; ++q) {
+      while (p < xo[j + 1] && xi[p] < yi[q]) ++p;
+      if (p == xo[j + 1] || xi[p] != yi[q]) return 1.0;
+    }
+    return 0.0;
+  });
+  if (missing > 0) return false;
+  for_blocks(n, [&](Eigen::Index begin, Eigen::Index end) {
+    for (Eigen::Index j = begin; j < end; ++j) {
+      int p = xo[j];
+      for (int q = yo[j]; q < yo[j + 1]; ++q) {
+        while (xi[p] < yi[q]) ++p;
+        xv[p] += w * yv[q];
+      }
+    }
+  });
+  return true;
+}
+
+}  // namespace pdd::detail

@@ -1,0 +1,208 @@
+#include "solvers/hierarchy.h"
+
+#include "domain/triangulation.h"
+
+#include <CGAL/Spatial_sort_traits_adapter_3.h>
+#include <CGAL/property_map.h>
+#include <CGAL/spatial_sort.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <numeric>
+#include <stdexcept>
+
+namespace pdd::detail {
+namespace {
+
+constexpr std::size_t kChunk = 512;  // queries walked one after the other from the last
+
+// Barycentric coordinates of p in finite cell c, negatives (rounding) set to
+// 0, then normalized.
+std::array<double, 4> barycentric(Delaunay::Cell_handle c, const Vec3& p) {
+  Vec3 q[4];
+  for (int i = 0; i < 4; ++i) q[i] = to_vec(c->vertex(i)->point());
+  auto volume = [](const Vec3& a, const Vec3& b, const Vec3& d, const Vec3& e) {
+    return (b - a).dot((d - a).cross(e - a));
+  };
+  std::array<double, 4> w{volume(p, q[1], q[2], q[3]), volume(q[0], p, q[2], q[3]),
+                          volume(q[0], q[1], p, q[3]), volume(q[0], q[1], q[2], p)};
+  double sum = 0;
+  for (double& x : w) sum += (x = std::max(x, 0.0));
+  for (double& x : w) x /= sum;
+  return w;
+}
+
+}  // namespace
+
+SparseMatrix subset_prolongation(const std::vector<Vec3>& vertices, const std::vector<int>& coarse,
+                                 const std::vector<int>& fine) {
+  if (coarse.size() < 4 || coarse.size() > fine.size())
+    throw std::invalid_argument("subset_prolongation: need 4 <= |coarse| <= |fine|");
+  using Item = std::pair<Point, int>;
+  std::vector<Item> items;
+  items.reserve(coarse.size());
+  for (std::size_t c = 0; c < coarse.size(); ++c)
+    items.emplace_back(to_point(vertices[coarse[c]]), static_cast<int>(c));
+  Delaunay dt;
+  dt.insert(items.begin(), items.end());
+  if (dt.dimension() < 3 || dt.number_of_vertices() != coarse.size())
+    throw std::invalid_argument("subset_prolongation: the coarse vertices are degenerate");
+
+  // Row r of P: up to 4 columns and their weights.
+  const std::size_t n = fine.size();
+  std::vector<std::array<int, 4>> columns(n, {-1, -1, -1, -1});
+  std::vector<std::array<double, 4>> weights(n, {0, 0, 0, 0});
+  // The fine vertices that are not coarse, in spatial order, located chunk
+  // by chunk, each walk starting from the previous one's cell (a few steps
+  // instead of a walk across the domain). The chunks do not depend on the
+  // thread count.
+  std::vector<Item> queries;
+  queries.reserve(n - coarse.size());
+  for (std::size_t r = 0, c = 0; r < n; ++r) {
+    if (c < coarse.size() && coarse[c] == fine[r]) {
+      columns[r][0] = static_cast<int>(c++);
+      weights[r][0] = 1;
+    } else {
+      if (c < coarse.size() && coarse[c] < fine[r])
+        throw std::invalid_argument("subset_prolongation: coarse is not a subset of fine");
+      queries.emplace_back(to_point(vertices[fine[r]]), static_cast<int>(r));
+    }
+  }
+  using Traits =
+      CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::First_of_pair_property_map<Item>>;
+  CGAL::spatial_sort(queries.begin(), queries.end(), Traits());
+  const std::size_t chunks = (queries.size() + kChunk - 1) / kChunk;
+  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t k) {
+    Delaunay::Cell_handle hint;
+    for (std::size_t q = k * kChunk; q < std::min(queries.size(), (k + 1) * kChunk); ++q) {
+      const auto& [point, r] = queries[q];
+      Delaunay::Locate_type lt;
+      int li, lj;
+      const Delaunay::Cell_handle c = dt.locate(point, lt, li, lj, hint);
+      if (lt == Delaunay::OUTSIDE_CONVEX_HULL || dt.is_infinite(c)) {
+        columns[r][0] = dt.nearest_vertex(point, c)->info();
+        weights[r][0] = 1;
+        continue;
+      }
+      hint = c;
+      const std::array<double, 4> w = barycentric(c, to_vec(point));
+      for (int i = 0; i < 4; ++i) {
+        columns[r][i] = w[i] > 0 ? c->vertex(i)->info() : -1;
+        weights[r][i] = w[i];
+      }
+    }
+  });
+
+  // Assembled by rows, then stored by columns.
+  Eigen::SparseMatrix<double, Eigen::RowMajor> rows(static_cast<Eigen::Index>(n),
+                                                    static_cast<Eigen::Index>(coarse.size()));
+  std::size_t nonzeros = 0;
+  for (const auto& c : columns)
+    for (int j : c) nonzeros += j >= 0;
+  rows.resizeNonZeros(static_cast<Eigen::Index>(nonzeros));
+  int* outer = rows.outerIndexPtr();
+  int* inner = rows.innerIndexPtr();
+  double* value = rows.valuePtr();
+  int out = 0;
+  for (std::size_t r = 0; r < n; ++r) {
+    outer[r] = out;
+    std::array<int, 4> order{0, 1, 2, 3};
+    std::sort(order.begin(), order.end(),
+              [&](int a, int b) { return columns[r][a] < columns[r][b]; });
+    for (int i : order)
+      if (columns[r][i] >= 0) {
+        inner[out] = columns[r][i];
+        value[out++] = weights[r][i];
+      }
+  }
+  outer[n] = out;
+  return SparseMatrix(rows);
+}
+
+ProgressiveHierarchy::ProgressiveHierarchy(double ratio, std::size_t coarsest)
+    : ratio_(ratio), coarsest_(std::max<std::size_t>(coarsest, 4)) {
+  if (!(ratio > 1)) throw std::invalid_argument("ProgressiveHierarchy: the ratio must be > 1");
+}
+
+std::vector<int> ProgressiveHierarchy::level(std::size_t n, double target) const {
+  // The earlier domain nearest the target, if within 30 % of it.
+  constexpr double kSnap = 1.3;
+  std::size_t begin = 0, end = n;  // the iteration whose new vertices the level shares
+  double best = kSnap;
+  for (std::size_t b : history_) {
+    const double off = std::max(b / target, target / b);
+    if (off < best) {
+      best = off;
+      begin = end = b;
+    }
+  }
+  if (begin == 0) {
+    for (std::size_t b : history_)
+      if (static_cast<double>(b) <= target) begin = b;
+    end = *std::upper_bound(history_.begin(), history_.end(), begin, std::less<>()) ;
+  }
+  std::vector<int> out;
+  out.reserve(static_cast<std::size_t>(target) + 16);
+  for (std::size_t v = 0; v < begin; ++v) out.push_back(static_cast<int>(v));
+  // A share of [begin, end) by a hash of the index: nested across shares.
+  const double share = (target - static_cast<double>(begin)) / static_cast<double>(end - begin);
+  for (std::size_t v = begin; v < end; ++v) {
+    std::uint64_t h = v + 0x9E3779B97F4A7C15ull;  // splitmix64
+    h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
+    h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
+    h ^= h >> 31;
+    if (static_cast<double>(h >> 11) * 0x1.0p-53 < share) out.push_back(static_cast<int>(v));
+  }
+  return out;
+}
+
+const std::vector<SparseMatrix>& ProgressiveHierarchy::levels_for(
+    const std::vector<Vec3>& vertices) {
+  const std::size_t n = vertices.size();
+  // Earlier sizes that are not prefixes of this domain are forgotten.
+  history_.erase(std::lower_bound(history_.begin(), history_.end(), n), history_.end());
+  history_.push_back(n);  // the top iteration's end, for level()
+
+  std::vector<std::vector<int>> chain(1);
+  chain[0].resize(n);
+  std::iota(chain[0].begin(), chain[0].end(), 0);
+  while (chain.back().size() > coarsest_) {
+    std::vector<int> next =
+        level(n, std::max(4.0, static_cast<double>(chain.back().size()) / ratio_));
+    if (next.size() < 4 || next.size() >= chain.back().size()) break;
+    chain.push_back(std::move(next));
+  }
+
+  // The top prolongation is new; the others are kept from the last call
+  // when it had the same pair of levels.
+  std::vector<SparseMatrix> prolongations(chain.size() - 1);
+  for (std::size_t k = 0; k + 1 < chain.size(); ++k) {
+    bool kept = false;
+    if (k > 0)
+      for (std::size_t m = 0; m + 1 < chain_.size(); ++m)
+        if (chain_[m] == chain[k] && chain_[m + 1] == chain[k + 1]) {
+          prolongations[k] = std::move(prolongations_[m]);
+          kept = true;
+          break;
+        }
+    if (!kept) prolongations[k] = subset_prolongation(vertices, chain[k + 1], chain[k]);
+  }
+  chain_ = std::move(chain);
+  prolongations_ = std::move(prolongations);
+  return prolongations_;
+}
+
+void ProgressiveHierarchy::remember(std::size_t n) {
+  history_.erase(std::lower_bound(history_.begin(), history_.end(), n), history_.end());
+  history_.push_back(n);
+}
+
+std::vector<std::size_t> ProgressiveHierarchy::sizes() const {
+  std::vector<std::size_t> out;
+  for (const auto& l : chain_) out.push_back(l.size());
+  return out;
+}
+
+}  // namespace pdd::detail

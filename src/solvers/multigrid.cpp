@@ -1,0 +1,247 @@
+#include "solvers/multigrid.h"
+
+#include "common/parallel_kernels.h"
+
+#include <pdd/errors.h>
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/Eigenvalues>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace pdd::detail {
+namespace {
+
+SparseMatrix compressed_transpose(const SparseMatrix& M) {
+  SparseMatrix t = M.transpose();
+  t.makeCompressed();
+  return t;
+}
+
+// The largest eigenvalue of D^-1 A (A symmetric positive definite, D its
+// diagonal) from `steps` Lanczos steps on D^-1/2 A D^-1/2, from a fixed start.
+double largest_eigenvalue(const SparseMatrix& A, const Eigen::VectorXd& inverse_sqrt_diagonal,
+                          int steps) {
+  const Eigen::Index n = A.rows();
+  steps = static_cast<int>(std::min<Eigen::Index>(steps, n));
+  Eigen::VectorXd v(n), previous = Eigen::VectorXd::Zero(n), w(n), scaled(n);
+  for (Eigen::Index i = 0; i < n; ++i) v[i] = 1.0 + 0.5 * std::sin(1.7 * static_cast<double>(i));
+  v /= std::sqrt(deterministic_dot(v, v));
+  std::vector<double> alpha, beta;
+  double b = 0;
+  for (int k = 0; k < steps; ++k) {
+    scaled = v.cwiseProduct(inverse_sqrt_diagonal);
+    symmetric_product(A, scaled, w);
+    w = w.cwiseProduct(inverse_sqrt_diagonal);
+    const double a = deterministic_dot(w, v);
+    alpha.push_back(a);
+    w -= a * v + b * previous;
+    b = std::sqrt(deterministic_dot(w, w));
+    if (!(b > 1e-14 * std::abs(a))) break;
+    beta.push_back(b);
+    previous = v;
+    v = w / b;
+  }
+  const int m = static_cast<int>(alpha.size());
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(m, m);
+  for (int k = 0; k < m; ++k) {
+    T(k, k) = alpha[k];
+    if (k + 1 < m) T(k, k + 1) = T(k + 1, k) = beta[k];
+  }
+  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(T, Eigen::EigenvaluesOnly)
+      .eigenvalues()
+      .maxCoeff();
+}
+
+}  // namespace
+
+struct Multigrid::Impl {
+  struct Level {
+    const SparseMatrix* A = nullptr;  // level 0: the caller's; others: `galerkin`
+    SparseMatrix galerkin;            // P^T A P of the finer level
+    const SparseMatrix* P = nullptr;  // to this level from the next coarser one
+    SparseMatrix R;                   // P^T, stored by columns: the rows of P
+    Eigen::VectorXd inverse_diagonal;
+    double largest = 0;               // of D^-1 A, a bound from Lanczos
+    // Work vectors (the V-cycle is const but reuses them: one at a time).
+    mutable Eigen::VectorXd residual, correction, direction, product, coarse_rhs, coarse_x;
+  };
+  MultigridOptions options;
+  std::vector<Level> levels;
+  std::unique_ptr<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>> coarsest;
+
+  // Smoothing of A x = b from x: the fourth-kind Chebyshev polynomial in
+  // D^-1 A of Lottes (2023, "Optimal polynomial smoothers for multigrid
+  // V-cycles", Alg. 3), which needs only the largest eigenvalue.
+  void smooth(const Level& l, const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+    const double rho = l.largest;
+    Eigen::VectorXd& r = l.residual;
+    Eigen::VectorXd& d = l.direction;
+    Eigen::VectorXd& q = l.product;
+    symmetric_product(*l.A, x, q);
+    const Eigen::Index n = b.size();
+    r.resize(n);
+    d.resize(n);
+    for_blocks(n, [&](Eigen::Index begin, Eigen::Index end) {
+      for (Eigen::Index i = begin; i < end; ++i) {
+        r[i] = b[i] - q[i];
+        d[i] = (4.0 / 3.0) / rho * l.inverse_diagonal[i] * r[i];
+        x[i] += d[i];
+      }
+    });
+    for (int k = 1; k < options.smoothing_degree; ++k) {
+      symmetric_product(*l.A, d, q);
+      const double c1 = (2.0 * k - 1) / (2.0 * k + 3), c2 = (8.0 * k + 4) / (2.0 * k + 3) / rho;
+      for_blocks(n, [&](Eigen::Index begin, Eigen::Index end) {
+        for (Eigen::Index i = begin; i < end; ++i) {
+          r[i] -= q[i];
+          d[i] = c1 * d[i] + c2 * l.inverse_diagonal[i] * r[i];
+          x[i] += d[i];
+        }
+      });
+    }
+  }
+
+  // x = V-cycle(b) on level k, from zero.
+  void vcycle(std::size_t k, const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+    const Level& l = levels[k];
+    if (k + 1 == levels.size()) {
+      x = coarsest->solve(b);
+      return;
+    }
+    x.setZero(b.size());
+    smooth(l, b, x);
+    // Restrict the residual, correct from the coarser level, smooth again.
+    const Level& c = levels[k + 1];
+    Eigen::VectorXd& r = l.residual;
+    symmetric_product(*l.A, x, l.product);
+    r = b - l.product;
+    transposed_product(*c.P, r, c.coarse_rhs);
+    vcycle(k + 1, c.coarse_rhs, c.coarse_x);
+    transposed_product(c.R, c.coarse_x, l.correction);
+    x += l.correction;
+    smooth(l, b, x);
+  }
+};
+
+Multigrid::Multigrid() : impl_(std::make_unique<Impl>()) {}
+Multigrid::~Multigrid() = default;
+Multigrid::Multigrid(Multigrid&&) noexcept = default;
+Multigrid& Multigrid::operator=(Multigrid&&) noexcept = default;
+
+void Multigrid::setup(const SparseMatrix& A, const std::vector<SparseMatrix>& prolongations,
+                      const MultigridOptions& options) {
+  Impl& d = *impl_;
+  d.options = options;
+  d.levels.clear();
+  d.levels.reserve(prolongations.size() + 1);
+  d.levels.resize(1);
+  d.levels[0].A = &A;
+  for (const SparseMatrix& P : prolongations) {
+    const Impl::Level& fine = d.levels.back();
+    if (P.rows() != fine.A->rows())
+      throw std::invalid_argument("multigrid: a prolongation does not match its fine level");
+    if (fine.A->rows() <= static_cast<Eigen::Index>(options.coarsest_size)) break;
+    Impl::Level coarse;
+    coarse.P = &P;
+    coarse.R = compressed_transpose(*coarse.P);
+    coarse.galerkin = galerkin_product(*coarse.P, *fine.A);
+    d.levels.push_back(std::move(coarse));
+    d.levels.back().A = &d.levels.back().galerkin;
+  }
+  for (std::size_t k = 0; k + 1 < d.levels.size(); ++k) {
+    Impl::Level& l = d.levels[k];
+    const Eigen::VectorXd diagonal = l.A->diagonal();
+    if (!(diagonal.minCoeff() > 0))
+      throw SolverError("multigrid: the system matrix has a non-positive diagonal entry");
+    l.inverse_diagonal = diagonal.cwiseInverse();
+    // Lanczos' estimate lies below the true value: a margin of 10 %.
+    l.largest = 1.1 * largest_eigenvalue(*l.A, diagonal.cwiseSqrt().cwiseInverse(), 12);
+  }
+  d.coarsest = std::make_unique<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>>();
+  d.coarsest->cholmod().print = 0;
+  d.coarsest->compute(*d.levels.back().A);
+  if (d.coarsest->info() != Eigen::Success)
+    throw SolverError("multigrid: the coarsest level (" +
+                      std::to_string(d.levels.back().A->rows()) +
+                      " unknowns) is not positive definite");
+}
+
+void Multigrid::precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
+  impl_->vcycle(0, r, z);
+}
+
+void Multigrid::clear() {
+  impl_->levels.clear();
+  impl_->levels.shrink_to_fit();
+  impl_->coarsest.reset();
+}
+
+std::size_t Multigrid::num_levels() const { return impl_->levels.size(); }
+std::size_t Multigrid::level_size(std::size_t level) const {
+  return static_cast<std::size_t>(impl_->levels.at(level).A->rows());
+}
+std::size_t Multigrid::level_nonzeros(std::size_t level) const {
+  return static_cast<std::size_t>(impl_->levels.at(level).A->nonZeros());
+}
+
+CgResult multigrid_cg(const SparseMatrix& A, const Multigrid& M, const Eigen::VectorXd& b,
+                      Eigen::VectorXd& x, double tolerance, int max_iterations) {
+  CgResult result;
+  const Eigen::Index n = b.size();
+  const double b_norm = std::sqrt(deterministic_dot(b, b));
+  if (x.size() != n) x.setZero(n);
+  if (b_norm == 0) {
+    x.setZero(n);
+    result.converged = true;
+    return result;
+  }
+  Eigen::VectorXd r(n), z(n), p(n), q(n);
+  symmetric_product(A, x, q);
+  r = b - q;
+  double r_norm = std::sqrt(deterministic_dot(r, r));
+  if (r_norm <= tolerance * b_norm) {
+    result.converged = true;
+    result.residual = r_norm / b_norm;
+    return result;
+  }
+  M.precondition(r, z);
+  p = z;
+  double rz = deterministic_dot(r, z);
+  for (int it = 1; it <= max_iterations; ++it) {
+    symmetric_product(A, p, q);
+    const double pq = deterministic_dot(p, q);
+    if (!(pq > 0)) break;  // A or M not positive definite numerically
+    const double alpha = rz / pq;
+    for_blocks(n, [&](Eigen::Index begin, Eigen::Index end) {
+      for (Eigen::Index i = begin; i < end; ++i) {
+        x[i] += alpha * p[i];
+        r[i] -= alpha * q[i];
+      }
+    });
+    result.iterations = it;
+    r_norm = std::sqrt(deterministic_dot(r, r));
+    if (r_norm <= tolerance * b_norm) {
+      result.converged = true;
+      break;
+    }
+    M.precondition(r, z);
+    const double rz_next = deterministic_dot(r, z);
+    const double beta = rz_next / rz;
+    rz = rz_next;
+    for_blocks(n, [&](Eigen::Index begin, Eigen::Index end) {
+      for (Eigen::Index i = begin; i < end; ++i) p[i] = z[i] + beta * p[i];
+    });
+  }
+  // The recursive residual drifts from the true one over many iterations.
+  symmetric_product(A, x, q);
+  result.residual = std::sqrt(deterministic_dot(b - q, b - q)) / b_norm;
+  if (result.converged && result.residual > 10 * tolerance) result.converged = false;
+  return result;
+}
+
+}  // namespace pdd::detail

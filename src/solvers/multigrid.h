@@ -1,0 +1,68 @@
+// Private to src/solvers: multigrid-preconditioned conjugate gradients.
+//
+// The levels are given as prolongations (the progressive hierarchy of
+// hierarchy.h); the coarse operators are the Galerkin products P^T A P, the
+// smoother is a Chebyshev polynomial in D^-1 A (D = diag A), run on all
+// cores, and the coarsest level is factored by CHOLMOD. Hand-written on
+// Eigen and TBB: Debian's hypre is built without OpenMP, so in one process
+// its BoomerAMG runs on one core, and on the SSD systems it needs 2-4x the
+// iterations of this hierarchy (docs/benchmarks.md, "Multigrid").
+#pragma once
+
+#include <pdd/fem.h>
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <vector>
+
+namespace pdd::detail {
+
+struct MultigridOptions {
+  int smoothing_degree = 6;          // Chebyshev polynomial degree, before and after the
+                                     // coarse correction
+  std::size_t coarsest_size = 4000;  // levels this small are solved directly
+};
+
+class Multigrid {
+ public:
+  Multigrid();
+  ~Multigrid();
+  Multigrid(Multigrid&&) noexcept;
+  Multigrid& operator=(Multigrid&&) noexcept;
+
+  // The hierarchy for A: prolongations[l] maps level l + 1 to level l
+  // (level 0 is A's, prolongations[l].rows() = size of level l). A and the
+  // prolongations must outlive the solves. Throws SolverError when the
+  // coarsest level is not positive definite.
+  void setup(const SparseMatrix& A, const std::vector<SparseMatrix>& prolongations,
+             const MultigridOptions& options = {});
+
+  // z = M^-1 r, one V-cycle from zero: symmetric positive definite in r.
+  void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
+
+  // Frees the levels (setup() builds them again).
+  void clear();
+
+  std::size_t num_levels() const;
+  std::size_t level_size(std::size_t level) const;
+  std::size_t level_nonzeros(std::size_t level) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+struct CgResult {
+  int iterations = 0;
+  double residual = 0;  // |A x - b| / |b|, recomputed at the end
+  bool converged = false;
+};
+
+// Preconditioned conjugate gradients from x (a warm start, or zero when x
+// is empty) until |A x - b| <= tolerance |b| or max_iterations.
+CgResult multigrid_cg(const SparseMatrix& A, const Multigrid& preconditioner,
+                      const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance,
+                      int max_iterations);
+
+}  // namespace pdd::detail
