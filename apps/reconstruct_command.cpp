@@ -36,6 +36,7 @@ struct ReconstructArgs {
   std::string linear = to_string(ReconstructOptions{}.solver.linear.method);  // multigrid | cholmod
   std::string strategy = to_string(ReconstructOptions{}.strategy);   // progressive | ...
   std::string sizing = "uniform";                                     // uniform | adaptive
+  std::string max_memory;     // "" (the default budget) or a size such as 8G
   ReconstructOptions options;
   bool ascii = false;  // PLY output as ASCII instead of binary
   bool quiet = false;  // no progress line, no table
@@ -89,6 +90,7 @@ void reconstruct(ReconstructArgs& args) {
   args.options.solver.linear.method = parse_linear_method(args.linear);
   args.options.strategy = parse_domain_strategy(args.strategy);
   args.options.sizing = parse_sizing_kind(args.sizing);
+  if (!args.max_memory.empty()) args.options.max_memory = parse_memory_size(args.max_memory);
   // Output paths first, so that a typo costs nothing.
   check_output_path(args.output, OutputKind::kMesh);
   if (!args.domain_output.empty()) check_output_path(args.domain_output, OutputKind::kDomain);
@@ -107,6 +109,8 @@ void reconstruct(ReconstructArgs& args) {
     args.options.on_iteration = iteration_writer(args.iterations_dir, args.ascii);
   const Result result = pdd::reconstruct(points, args.options);
   if (!args.quiet && ::isatty(STDERR_FILENO)) std::cerr << "\n";
+  if (const std::string note = memory_budget_note(result); !note.empty())
+    std::cerr << "pdd: " << note << "\n";
   if (result.mesh.faces.empty())
     throw std::runtime_error("reconstruct: " + args.input +
                              ": the isosurface is empty (the solver found no surface)");
@@ -183,10 +187,10 @@ void add_reconstruct_command(CLI::App& app) {
                   "At most this many solve-optimize-refine iterations")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  cmd->add_option("--max-vertices", args->options.max_vertices,
-                  "Stop refining once the domain has this many vertices")
-      ->check(greater_than(0))
-      ->capture_default_str();
+  cmd->add_option("--max-memory", args->max_memory,
+                  "Memory the run may use, e.g. 8G or 500M (default: 3/4 of the memory "
+                  "available at the start). A run whose sizing would outgrow it coarsens the "
+                  "sizing and says so");
   cmd->add_option("--optimizer-rounds", args->options.optimizer_rounds,
                   "Optimizer passes (§3.3) on each refined domain, before it is solved on (0 "
                   "here and below leaves the refiner's slivers, on which SSD's system can lose "

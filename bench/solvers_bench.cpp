@@ -10,7 +10,8 @@
 // Domains: an ellipsoid's samples (1, 0.7, 0.5; exact normals, one sample per
 // 4 vertices) in Domain::initial, refined three times by a factor of 3 (two
 // thirds of the new vertices in a shell around the surface, one third spread
-// through the ball), like the progressive loop's last iterations. The
+// through the ball) and optimized once, like the progressive loop's last
+// iterations. The
 // multigrid route solves the four domains in order with one solver, so the
 // earlier ones are its coarse levels, and reports the last solve; the other
 // routes solve the last domain alone. Every route runs in its own child
@@ -18,6 +19,7 @@
 // parent's at the fork (the domains). CHOLMOD is skipped above --direct-max
 // vertices, where its factor outgrows this machine.
 #include <pdd/domain.h>
+#include <pdd/optimize.h>
 #include <pdd/solvers.h>
 
 #include <Eigen/IterativeLinearSolvers>
@@ -94,6 +96,19 @@ void grow(pdd::Domain& domain, const pdd::PointSet& samples, std::size_t target,
     if (p.norm() < r) points.push_back(domain.center() + p);
   }
   domain.insert(points);
+}
+
+// One optimizer round (§3.3), as the loop runs before each solve, with f an
+// approximate signed distance to the ellipsoid for the mid-edge term.
+void optimize(pdd::Domain& domain) {
+  std::vector<double> f(domain.num_vertices());
+  for (std::size_t v = 0; v < f.size(); ++v) {
+    const Vec3& p = domain.vertices()[v];
+    const double k = p.cwiseQuotient(kAxes).norm();
+    f[v] = (k - 1) * p.norm() / std::max(k, 1e-12);
+  }
+  domain.set_f(f);
+  pdd::optimize_domain(domain, pdd::OptimizerOptions());
 }
 
 struct Outcome {
@@ -337,6 +352,7 @@ int main(int argc, char** argv) {
     for (std::size_t k : {9, 3, 1}) {
       domains.push_back(domains.back());
       grow(domains.back(), samples, target / k, rng);
+      optimize(domains.back());
     }
     std::ostringstream head;
     head << "\n## " << domains.back().num_vertices() << " vertices, " << domains.back().num_tets()

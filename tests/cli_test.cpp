@@ -170,12 +170,18 @@ TEST_F(CliTest, BadOptionValuesExitTwoLeavingNoFile) {
   const std::vector<std::string> options = {"--solver octree", "--domain grid", "--target-edge -1",
                                             "--iterations 0", "--linear lu",
                                             "--hole-coarsening 0.5", "--min-component-size -2",
-                                            "--stats '" + path("s.txt") + "'"};
+                                            "--stats '" + path("s.txt") + "'",
+                                            "--max-memory lots", "--max-memory 0",
+                                            "--max-memory -2G", "--max-memory 8X",
+                                            "--max-memory 1M"};
   for (const std::string& option : options) {
     const Outcome run =
         pdd("reconstruct '" + path("in.ply") + "' -o '" + path("out.ply") + "' " + option);
     EXPECT_EQ(run.code, 2) << option << ": " << run.err;
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << option << ": " << run.err;
+    if (option.rfind("--max-memory", 0) == 0) {
+      EXPECT_NE(run.err.find("--max-memory"), std::string::npos) << run.err;
+    }
     EXPECT_EQ(entries(), std::vector<std::string>{"in.ply"}) << option;
   }
 }

@@ -2,6 +2,7 @@
 #include <pdd/isofacet.h>
 #include <pdd/pipeline.h>
 #include <pdd/quality.h>
+#include <pdd/report.h>
 #include <pdd/solvers.h>
 
 #include <gtest/gtest.h>
@@ -297,6 +298,36 @@ TEST(Pipeline, MultigridAndCholmodGiveTheSameSurface) {
   EXPECT_NEAR(d_mg.mean, d_direct.mean, 0.05 * d_direct.mean + 1e-5);
   EXPECT_NEAR(static_cast<double>(mg.mesh.faces.size()),
               static_cast<double>(direct.mesh.faces.size()), 0.02 * direct.mesh.faces.size());
+}
+
+TEST(Pipeline, ABudgetTooSmallForTheTargetCoarsensTheSizing) {
+  // A unit sphere at edge 0.02 needs a domain of about 36k vertices; 300 MB
+  // allow about 23k: the run coarsens its sizing, says so, stays within the
+  // vertex budget and still gives a closed sphere.
+  const PointSet input = test::sample_sphere(3000);
+  ReconstructOptions o = fast_options(SolverKind::kSsd, 0.02);
+  o.max_memory = parse_memory_size("300M");
+  const Result r = reconstruct(input, o);
+  EXPECT_EQ(r.budget.bytes, 300u << 20);
+  EXPECT_GT(r.budget.coarsening, 1.0);
+  EXPECT_GT(r.budget.predicted_vertices, r.budget.vertices);
+  EXPECT_LE(r.domain.num_vertices(), r.budget.vertices);
+  EXPECT_NE(memory_budget_note(r).find("coarsened"), std::string::npos) << memory_budget_note(r);
+  expect_closed_manifold(r.mesh, 0);
+  const Distances d =
+      vertex_distances(r.mesh, [](const Vec3& p) { return std::abs(p.norm() - 1.0); });
+  EXPECT_LT(d.mean, 0.01);
+
+  o.max_memory = 0;  // the default budget: no coarsening on this machine's free memory
+  const Result full = reconstruct(input, o);
+  EXPECT_EQ(full.budget.coarsening, 1.0);
+  EXPECT_EQ(memory_budget_note(full), "");
+  EXPECT_GT(full.domain.num_vertices(), r.domain.num_vertices());
+
+  EXPECT_THROW(parse_memory_size("12 parsecs"), InputError);
+  EXPECT_EQ(parse_memory_size("1.5GiB"), std::size_t{3} << 29);
+  o.max_memory = 1 << 20;
+  EXPECT_THROW(reconstruct(input, o), InputError);
 }
 
 TEST(Pipeline, EverySolveButTheFirstRunsOnAnOptimizedRefinedDomain) {

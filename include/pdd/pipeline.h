@@ -2,7 +2,7 @@
 // iterations of solve -> optimize -> refine, then a final solve on the
 // optimized domain and marching tetrahedra. The iterations stop when the
 // sizing field is met (refine.h, sizing_met), when a refinement pass splits
-// few tets, at max_iterations or at max_vertices. Also the three other domain
+// few tets or at max_iterations, and never outgrow the memory budget. Also the three other domain
 // strategies of §4.2, for comparison.
 #pragma once
 
@@ -79,7 +79,9 @@ struct ReconstructOptions {
                                        // (sizing.h; max_factor = 1 turns it off)
 
   int max_iterations = 12;             // solve-optimize-refine iterations at most
-  std::size_t max_vertices = 3000000;  // stop refining once the domain has this many vertices
+  std::size_t max_memory = 0;  // bytes the run may use (0: 3/4 of the memory available at its
+                               // start); the domain's vertex budget follows, and a run whose
+                               // sizing would outgrow it coarsens the sizing (MemoryBudget)
   double min_refined_fraction = 0.02;  // stop once a refinement pass splits fewer crossing tets
   int octree_depth = 0;                // kOctree: 0 = finest cells about the input spacing
   std::uint64_t seed = 0;              // the refiner's random draws (rule 5 of §3.4)
@@ -112,6 +114,24 @@ struct IterationStats {
   double seconds_cleanup = 0;
 };
 
+// The memory budget of a run and what it did to the sizing. The final
+// domain is predicted after each solve from the isofacets' areas against
+// their targets (about 0.6-0.7 domain vertices per target-sized isofacet);
+// when the prediction exceeds the vertex budget, every target area is
+// multiplied so that it fits.
+struct MemoryBudget {
+  std::size_t bytes = 0;                // the budget (ReconstructOptions::max_memory or default)
+  std::size_t vertices = 0;             // the domain's vertex budget that follows
+  std::size_t predicted_vertices = 0;   // the largest final domain predicted at the asked sizing
+  double coarsening = 1;                // factor of the target areas (1: none; edges: its root)
+  bool refinement_stopped = false;      // the domain reached 3/4 of the vertex budget
+};
+
+// Parses a memory size: a positive number of bytes with an optional unit
+// K, M, G or T (powers of 1024; "KB", "MiB" and the like too), e.g. "8G",
+// "500M", "1.5GiB". InputError naming `what` when it is not one.
+std::size_t parse_memory_size(const std::string& text, const std::string& what = "--max-memory");
+
 struct Result {
   TriangleMesh mesh;  // the isosurface of the final solve, outward-facing, without its small
                       // components, cleaned up unless ReconstructOptions::cleanup is off
@@ -119,6 +139,7 @@ struct Result {
   std::vector<IterationStats> iterations;  // the last entry is the final solve
   double noise = 0;  // SSD with the automatic value weight: estimate_noise(points) (solvers.h);
                      // otherwise 0. The weight of each solve is in its SolverStats.
+  MemoryBudget budget;
   double seconds = 0;
   bool cancelled = false;  // the progress callback returned false: mesh is empty
 };

@@ -5,6 +5,7 @@
 #include <pdd/quality.h>
 #include <pdd/refine.h>
 
+#include "pipeline/memory_budget.h"
 #include "pipeline/octree_domain.h"
 
 #include <Eigen/Core>
@@ -74,6 +75,7 @@ class Run {
       : points_(points),
         options_(options),
         solver_(make_solver(options.solver)),
+        budget_(options.max_memory, points.size()),
         rng_(options.seed),
         start_(Clock::now()) {}
 
@@ -85,15 +87,15 @@ class Run {
   // the last solve is the final one: no second solve on the finest domain.
   Result progressive() {
     Domain domain = initial_domain();
-    const auto sizing = make_sizing(points_, options_);
+    std::shared_ptr<const SizingField> sizing = make_sizing(points_, options_);
     bool refined_last = false;  // the domain changed since it was last solved on
     for (int it = 1; it <= options_.max_iterations; ++it) {
       IterationStats stats;
       if (refined_last) optimize(domain, it, stats, options_.optimizer_rounds);
       solve(domain, it, stats);
       refined_last = false;
-      const bool over_budget = domain.num_vertices() >= options_.max_vertices;
-      bool converged = sizing_met(isofacet_area_stats(domain, *sizing));
+      bool converged = sizing_met(within_budget(domain, sizing));
+      const bool over_budget = !converged && !budget_.allows_refining(domain.num_vertices());
       if (!over_budget && !converged) {
         optimize(domain, it, stats, options_.optimizer_rounds_before_refining);
         report("refine", it, domain);
@@ -121,13 +123,13 @@ class Run {
   // non-optimized strategy does (§4.5: otherwise the solver fails).
   Result direct() {
     Domain domain = initial_domain();
-    const auto sizing = make_sizing(points_, options_);
+    std::shared_ptr<const SizingField> sizing = make_sizing(points_, options_);
     IterationStats first;
     solve(domain, 1, first);
     result_.iterations.push_back(first);
     for (int it = 1; it <= options_.max_iterations; ++it) {
-      if (domain.num_vertices() >= options_.max_vertices ||
-          sizing_met(isofacet_area_stats(domain, *sizing)))
+      if (sizing_met(within_budget(domain, sizing)) ||
+          !budget_.allows_refining(domain.num_vertices()))
         break;
       report("refine", it, domain);
       const RefinementStats refined = refine(domain, *sizing, rng_);
@@ -163,6 +165,13 @@ class Run {
   Domain initial_domain() {
     report("initialize", 0, Domain());
     return Domain::initial(points_, options_.domain);
+  }
+
+  // The isofacets against the sizing's targets, after coarsening the sizing
+  // if the final domain they predict would outgrow the memory budget.
+  IsofacetAreaStats within_budget(const Domain& domain, std::shared_ptr<const SizingField>& sizing) {
+    const IsofacetAreaStats stats = isofacet_area_stats(domain, *sizing);
+    return budget_.fit(sizing, stats) ? isofacet_area_stats(domain, *sizing) : stats;
   }
 
   // Calls the progress callback; a false answer cancels the run.
@@ -259,6 +268,7 @@ class Run {
     result_.mesh = std::move(contour_.mesh);
     clean_up(domain, result_.iterations.back());
     result_.domain = std::move(domain);
+    result_.budget = budget_.report();
     result_.seconds = seconds_since(start_);
     return std::move(result_);
   }
@@ -266,6 +276,7 @@ class Run {
   const PointSet& points_;
   const ReconstructOptions& options_;
   std::unique_ptr<ImplicitSolver> solver_;  // every solve, so that its multigrid keeps the levels
+  detail::VertexBudget budget_;
   std::mt19937_64 rng_;
   Clock::time_point start_;
   IsoSurface contour_;

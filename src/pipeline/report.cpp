@@ -28,6 +28,12 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
       << "  \"vertices\": " << result.domain.num_vertices() << ",\n"
       << "  \"triangles\": " << result.mesh.faces.size() << ",\n"
       << "  \"isovertices\": " << result.mesh.vertices.size() << ",\n"
+      << "  \"memory_budget\": {\"bytes\": " << result.budget.bytes
+      << ", \"vertices\": " << result.budget.vertices
+      << ", \"predicted_vertices\": " << result.budget.predicted_vertices
+      << ", \"coarsening\": " << number(result.budget.coarsening)
+      << ", \"refinement_stopped\": " << (result.budget.refinement_stopped ? "true" : "false")
+      << "},\n"
       << "  \"iterations\": [";
   for (std::size_t i = 0; i < result.iterations.size(); ++i) {
     const IterationStats& s = result.iterations[i];
@@ -99,6 +105,28 @@ std::string statistics_table(const Result& result) {
   std::snprintf(line, sizeof line, "total %.2f s\n", result.seconds);
   out << line;
   return out.str();
+}
+
+std::string memory_budget_note(const Result& result) {
+  const MemoryBudget& b = result.budget;
+  char line[320];
+  const double mb = static_cast<double>(b.bytes) / (1 << 20);
+  if (b.coarsening > 1) {
+    std::snprintf(line, sizeof line,
+                  "memory budget %.0f MB (about %zu domain vertices; --max-memory): the sizing "
+                  "was coarsened %.3gx in area (%.3gx in edge length) from a predicted %zu "
+                  "vertices",
+                  mb, b.vertices, b.coarsening, std::sqrt(b.coarsening), b.predicted_vertices);
+    return line;
+  }
+  if (b.refinement_stopped) {
+    std::snprintf(line, sizeof line,
+                  "memory budget %.0f MB (about %zu domain vertices; --max-memory): refinement "
+                  "stopped at %zu vertices before the sizing was met",
+                  mb, b.vertices, result.domain.num_vertices());
+    return line;
+  }
+  return "";
 }
 
 }  // namespace pdd
