@@ -153,7 +153,7 @@ void add_reconstruct_command(CLI::App& app) {
       ->check(greater_than(0));
   cmd->add_option("--linear", args->linear,
                   "Linear solves: multigrid (conjugate gradients preconditioned by V-cycles over "
-                  "the earlier iterations' domains; CHOLMOD under 20k unknowns) or cholmod "
+                  "the earlier iterations' domains; CHOLMOD under 5000 unknowns) or cholmod "
                   "(always direct: the reference, memory and time superlinear)")
       ->check(CLI::IsMember({"multigrid", "cholmod"}))
       ->capture_default_str();

@@ -149,7 +149,7 @@ Outcome run_multigrid(const std::vector<pdd::Domain>& domains, const pdd::PointS
 }
 
 // Eigen's CG with its incomplete Cholesky (the route pdd used before the
-// multigrid), capped at 2000 iterations.
+// multigrid), capped at 1000 iterations.
 Outcome run_incomplete_cholesky(const std::vector<pdd::Domain>& domains,
                                 const pdd::PointSet& samples, double tolerance) {
   const pdd::LinearSystem s = pdd::ssd_system(domains.back(), samples,
@@ -158,7 +158,7 @@ Outcome run_incomplete_cholesky(const std::vector<pdd::Domain>& domains,
                            Eigen::IncompleteCholesky<double>>
       cg;
   cg.setTolerance(tolerance);
-  cg.setMaxIterations(2000);
+  cg.setMaxIterations(1000);
   auto start = Clock::now();
   cg.compute(s.A);
   Outcome out;

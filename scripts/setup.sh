@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages pdd needs, skipping those already installed.
 # Idempotent; needs root (or sudo) for apt-get.
+#   scripts/setup.sh          what the build, the tests and the example need
+#   scripts/setup.sh --bench  also what bench/solvers.sh and bench/scale.sh use
 set -euo pipefail
 
 packages=(
@@ -11,6 +13,12 @@ packages=(
   time jq  # bench/shared_data.sh: /usr/bin/time -v, JSON fields
   libcgal-demo  # bench/table1.sh: CGAL's data set (data/points_3/hippo1.ply)
 )
+if [ "${1:-}" = "--bench" ]; then
+  packages+=(
+    libhypre-dev mpi-default-dev  # bench/solvers.sh: BoomerAMG beside pdd's multigrid
+    python3-open3d python3-numpy  # bench/scale.sh: ../shared/tools/virtual_scan.py
+  )
+fi
 
 missing=()
 for p in "${packages[@]}"; do

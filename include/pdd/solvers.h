@@ -45,7 +45,7 @@ std::string to_string(LinearMethod method);
 
 struct LinearSolverOptions {
   LinearMethod method = LinearMethod::kMultigrid;  // see LinearMethod
-  std::size_t direct_below = 20000;  // kMultigrid: smaller systems are factored by CHOLMOD
+  std::size_t direct_below = 5000;  // kMultigrid: smaller systems are factored by CHOLMOD
   double cg_tolerance = 1e-6;  // CG stops at |A x - b| <= tol |b|: on the shared data the
                                // surfaces are those of 1e-10 (Chamfer-L1 within 0.5 %, the
                                // same topology) at half the iterations (docs/benchmarks.md)
@@ -56,7 +56,7 @@ struct LinearSolverOptions {
   // the vertices of the finer one; levels of coarsest_size vertices or fewer are factored.
   int smoothing_degree = 6;
   double coarsening_ratio = 3;
-  std::size_t coarsest_size = 4000;
+  std::size_t coarsest_size = 2000;
 };
 
 // Screened Poisson, Eqs. (13)-(14):

@@ -76,14 +76,19 @@ struct Multigrid::Impl {
 
   // Smoothing of A x = b from x: the fourth-kind Chebyshev polynomial in
   // D^-1 A of Lottes (2023, "Optimal polynomial smoothers for multigrid
-  // V-cycles", Alg. 3), which needs only the largest eigenvalue.
-  void smooth(const Level& l, const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  // V-cycles", Alg. 3), which needs only the largest eigenvalue. From
+  // x = 0 when zero_start (no product for the first residual).
+  void smooth(const Level& l, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+              bool zero_start) const {
     const double rho = l.largest;
     Eigen::VectorXd& r = l.residual;
     Eigen::VectorXd& d = l.direction;
     Eigen::VectorXd& q = l.product;
-    symmetric_product(*l.A, x, q);
     const Eigen::Index n = b.size();
+    if (zero_start)
+      q.setZero(n);
+    else
+      symmetric_product(*l.A, x, q);
     r.resize(n);
     d.resize(n);
     for_blocks(n, [&](Eigen::Index begin, Eigen::Index end) {
@@ -114,7 +119,7 @@ struct Multigrid::Impl {
       return;
     }
     x.setZero(b.size());
-    smooth(l, b, x);
+    smooth(l, b, x, /*zero_start=*/true);
     // Restrict the residual, correct from the coarser level, smooth again.
     const Level& c = levels[k + 1];
     Eigen::VectorXd& r = l.residual;
@@ -124,7 +129,7 @@ struct Multigrid::Impl {
     vcycle(k + 1, c.coarse_rhs, c.coarse_x);
     transposed_product(c.R, c.coarse_x, l.correction);
     x += l.correction;
-    smooth(l, b, x);
+    smooth(l, b, x, /*zero_start=*/false);
   }
 };
 

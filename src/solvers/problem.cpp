@@ -17,7 +17,7 @@ Problem make_problem(const Domain& domain, const PointSet& points, const std::st
   if (points.normals.size() != points.points.size())
     throw InputError(solver + ": " + std::to_string(points.normals.size()) + " normals for " +
                      std::to_string(points.points.size()) + " points");
-  Problem p{domain.mesh()};
+  Problem p{domain.mesh(), {}, {}, {}};
   try {
     p.locations = locate_points(domain, points.points);
   } catch (const InputError& e) {
