@@ -10,7 +10,7 @@
 #   PDD              the pdd binary (default: build/pdd)
 #   --domain S       passed to `pdd reconstruct --domain S` (e.g. octree for the
 #                    baseline); the table then goes to shared_data_S.md
-#   --linear M       passed to `pdd reconstruct --linear M` (e.g. cg); the table
+#   --linear M       passed to `pdd reconstruct --linear M` (e.g. cholmod); the table
 #                    then goes to shared_data_linear_M.md
 #   --seed S         passed to `pdd reconstruct --seed S`; the table then goes
 #                    to shared_data_seed_S.md (default: pdd's default seed)
@@ -189,7 +189,7 @@ for input in "${inputs[@]}"; do
 done
 
 {
-  echo "# pdd on the shared data: domain ${domain:-progressive}, linear solves ${linear:-auto}, seed ${seed:-default} (other options default)"
+  echo "# pdd on the shared data: domain ${domain:-progressive}, linear solves ${linear:-multigrid}, seed ${seed:-default} (other options default)"
   echo
   echo "$(date -u '+%Y-%m-%d %H:%M UTC'); $("$pdd" --version 2>/dev/null || echo "pdd ?"), commit" \
     "$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo ?)$(git -C "$root" diff --quiet 2>/dev/null || echo "+local changes");" \
@@ -216,7 +216,7 @@ done
   if [ ${#stages[@]} -gt 0 ]; then
     echo
     echo "Seconds per stage, summed over the iterations (\`--stats\`): the solves' assembly, factorization"
-    echo "(CHOLMOD, incomplete Cholesky) and linear solve (CG / triangular solves), the optimizer, the"
+    echo "(CHOLMOD, or the multigrid setup) and linear solve (CG / triangular solves), the optimizer, the"
     echo "refiner, marching tetrahedra, the final clean-up; iterations, final domain vertices, CG iterations."
     echo
     echo "| input | total | solve: assembly | solve: factorize | solve: linear | optimize | refine | contour | clean-up | iterations | final vertices | CG iterations |"
