@@ -128,14 +128,17 @@ void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     const CgResult cg = multigrid_cg(*d.A, d.multigrid, b, x, d.options.cg_tolerance,
                                      d.options.cg_max_iterations);
     iterations_ = cg.iterations;
+    residual_ = cg.residual;  // recomputed from x by multigrid_cg
     if (!cg.converged)
       fail("multigrid conjugate gradients did not converge in " + std::to_string(cg.iterations) +
                " iterations",
            cg.residual);
   }
-  Eigen::VectorXd Ax;
-  symmetric_product(*d.A, x, Ax);
-  residual_ = (Ax - b).norm() / b_norm;
+  if (d.direct) {
+    Eigen::VectorXd Ax;
+    symmetric_product(*d.A, x, Ax);
+    residual_ = (Ax - b).norm() / b_norm;
+  }
   if (!x.allFinite()) fail("linear solve produced non-finite values", residual_);
   if (d.direct && residual_ > d.options.max_residual) fail("CHOLMOD solve is inaccurate", residual_);
 }
