@@ -5,6 +5,7 @@
 #include <pdd/optimize.h>
 
 #include "common/nearest_neighbors.h"
+#include "common/conjugate_gradient.h"
 #include "common/parallel_kernels.h"
 #include "optimize/energy_terms.h"
 
@@ -79,42 +80,20 @@ Eigen::VectorXd minimize(const DomainEnergy& energy, const Eigen::VectorXd& x0,
       for (Eigen::Index i = begin; i < end; ++i) z.segment<3>(3 * i) = inverse[i] * r.segment<3>(3 * i);
     });
   };
-  Eigen::VectorXd x = x0, r, z, p, q;
+  Eigen::VectorXd x = x0, r, q;
   detail::symmetric_product(A, x, q);
   r = energy.b - q;
   mask(r);
   const double r0 = std::sqrt(detail::deterministic_dot(r, r));
   if (r0 == 0) return x;
-  precondition(r, z);
-  p = z;
-  double rz = detail::deterministic_dot(r, z);
-  int it = 0;
-  double residual = 1;
-  while (it < options.cg_max_iterations) {
-    detail::symmetric_product(A, p, q);
-    mask(q);
-    const double pq = detail::deterministic_dot(p, q);
-    if (!(pq > 0)) break;
-    const double alpha = rz / pq;
-    detail::for_blocks(n, [&](Eigen::Index begin, Eigen::Index end) {
-      for (Eigen::Index i = begin; i < end; ++i) {
-        x[i] += alpha * p[i];
-        r[i] -= alpha * q[i];
-      }
-    });
-    ++it;
-    residual = std::sqrt(detail::deterministic_dot(r, r)) / r0;
-    if (residual <= options.cg_tolerance) break;
-    precondition(r, z);
-    const double rz_next = detail::deterministic_dot(r, z);
-    const double beta = rz_next / rz;
-    rz = rz_next;
-    detail::for_blocks(n, [&](Eigen::Index begin, Eigen::Index end) {
-      for (Eigen::Index i = begin; i < end; ++i) p[i] = z[i] + beta * p[i];
-    });
-  }
-  report.cg_iterations = it;
-  report.cg_residual = residual;
+  const detail::PcgResult cg = detail::preconditioned_cg(
+      [&](const Eigen::VectorXd& p, Eigen::VectorXd& Ap) {
+        detail::symmetric_product(A, p, Ap);
+        mask(Ap);
+      },
+      precondition, r, x, options.cg_tolerance, r0, options.cg_max_iterations);
+  report.cg_iterations = cg.iterations;
+  report.cg_residual = cg.residual;
   if (!x.allFinite()) throw SolverError("optimizer: the conjugate gradient diverged");
   return x;
 }

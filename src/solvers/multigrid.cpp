@@ -1,5 +1,6 @@
 #include "solvers/multigrid.h"
 
+#include "common/conjugate_gradient.h"
 #include "common/parallel_kernels.h"
 
 #include <pdd/errors.h>
@@ -205,43 +206,15 @@ CgResult multigrid_cg(const SparseMatrix& A, const Multigrid& M, const Eigen::Ve
     result.converged = true;
     return result;
   }
-  Eigen::VectorXd r(n), z(n), p(n), q(n);
+  Eigen::VectorXd r(n), q(n);
   symmetric_product(A, x, q);
   r = b - q;
-  double r_norm = std::sqrt(deterministic_dot(r, r));
-  if (r_norm <= tolerance * b_norm) {
-    result.converged = true;
-    result.residual = r_norm / b_norm;
-    return result;
-  }
-  M.precondition(r, z);
-  p = z;
-  double rz = deterministic_dot(r, z);
-  for (int it = 1; it <= max_iterations; ++it) {
-    symmetric_product(A, p, q);
-    const double pq = deterministic_dot(p, q);
-    if (!(pq > 0)) break;  // A or M not positive definite numerically
-    const double alpha = rz / pq;
-    for_blocks(n, [&](Eigen::Index begin, Eigen::Index end) {
-      for (Eigen::Index i = begin; i < end; ++i) {
-        x[i] += alpha * p[i];
-        r[i] -= alpha * q[i];
-      }
-    });
-    result.iterations = it;
-    r_norm = std::sqrt(deterministic_dot(r, r));
-    if (r_norm <= tolerance * b_norm) {
-      result.converged = true;
-      break;
-    }
-    M.precondition(r, z);
-    const double rz_next = deterministic_dot(r, z);
-    const double beta = rz_next / rz;
-    rz = rz_next;
-    for_blocks(n, [&](Eigen::Index begin, Eigen::Index end) {
-      for (Eigen::Index i = begin; i < end; ++i) p[i] = z[i] + beta * p[i];
-    });
-  }
+  const PcgResult cg = preconditioned_cg(
+      [&](const Eigen::VectorXd& p, Eigen::VectorXd& Ap) { symmetric_product(A, p, Ap); },
+      [&](const Eigen::VectorXd& residual, Eigen::VectorXd& z) { M.precondition(residual, z); },
+      r, x, tolerance, b_norm, max_iterations);
+  result.iterations = cg.iterations;
+  result.converged = cg.converged;
   // The recursive residual drifts from the true one over many iterations.
   symmetric_product(A, x, q);
   result.residual = std::sqrt(deterministic_dot(b - q, b - q)) / b_norm;
