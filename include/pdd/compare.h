@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace pdd {
@@ -45,6 +46,10 @@ struct SurfaceDistance {
 
 // The total area of the faces of `mesh`.
 double surface_area(const TriangleMesh& mesh);
+
+// Throws InputError "<source>: the mesh has no area (...)" when all faces of
+// `mesh` are degenerate: such a mesh cannot be sampled or compared.
+void require_area(const TriangleMesh& mesh, const std::string& source);
 
 // `count` points drawn uniformly by area on the faces of `mesh`: a face is
 // chosen with probability proportional to its area, then a point uniformly in

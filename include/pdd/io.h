@@ -78,6 +78,13 @@ PointSet read_points(const std::string& path, ValidationReport* report = nullptr
 PointSet validate_points(PointSet points, const std::string& source,
                          ValidationReport* report = nullptr, const ValidationOptions& options = {});
 
+// Throws InputError, with a message starting with `source`, when `mesh` has no
+// faces, a vertex coordinate that is not finite (vertices counted from 1) or a
+// face that refers to a vertex it does not have (faces counted from 1).
+// For meshes that come from memory (the Python module); read_mesh checks the
+// same with the file's line numbers.
+void validate_mesh(const TriangleMesh& mesh, const std::string& source);
+
 // Throws InputError "<source>: the points have no normals; <why>" when `points`
 // has none. Called by the command line and the solvers that need normals,
 // e.g. why = "the SSD solver fits the gradient of f to oriented normals".

@@ -1,8 +1,12 @@
-// Reports of a reconstruction: the per-iteration statistics as JSON (for
-// --stats) and as a text table (printed at the end of a run).
+// Reports, shared by the command line and the Python module: a
+// reconstruction's per-iteration statistics as JSON (for --stats) and as a
+// text table (printed at the end of a run), and the reports of `pdd quality`
+// and `pdd compare` as text or JSON.
 #pragma once
 
+#include <pdd/compare.h>
 #include <pdd/pipeline.h>
+#include <pdd/quality.h>
 
 #include <string>
 
@@ -20,5 +24,18 @@ std::string statistics_table(const Result& result);
 // One line (no newline) when the memory budget changed the run: the sizing
 // coarsened, or refinement stopped at the vertex budget; "" otherwise.
 std::string memory_budget_note(const Result& result);
+
+// --save-iterations: writes the isosurface (.ply) and the domain with f (.vtu)
+// of every iteration into `folder`, created if missing (Figure 7).
+IterationCallback iteration_files(const std::string& folder, bool ascii);
+
+// `pdd quality MESH [--json]`: triangle quality (angles, histogram) and the
+// surface's checks (manifold, closed, components, genus); `file` names it.
+std::string quality_report(const std::string& file, const TriangleMesh& mesh, bool as_json);
+
+// `pdd compare A B [--json]`: the distances of compare_surfaces, B the reference.
+std::string comparison_report(const std::string& a, const std::string& b,
+                              const CompareOptions& options, const SurfaceDistance& distance,
+                              bool as_json);
 
 }  // namespace pdd

@@ -31,6 +31,10 @@ enum class SolverKind { kPoisson, kSsd, kSpectral };
 SolverKind parse_solver_kind(const std::string& name);
 std::string to_string(SolverKind kind);
 
+// Why `kind` needs normals, for the message when a point set has none
+// (require_normals): "the SSD solver fits the gradient of f to oriented normals (Eq. 15)".
+std::string normals_requirement(SolverKind kind);
+
 // How the sparse symmetric positive definite systems are solved.
 enum class LinearMethod {
   kMultigrid,  // conjugate gradients preconditioned by multigrid V-cycles whose coarse levels

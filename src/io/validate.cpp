@@ -185,6 +185,21 @@ PointSet io::validate_points_at(PointSet points, const std::string& source,
   return points;
 }
 
+void validate_mesh(const TriangleMesh& mesh, const std::string& source) {
+  if (mesh.faces.empty()) throw InputError(source + ": the mesh has no faces");
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+    if (!mesh.vertices[i].allFinite())
+      throw InputError(source + ": vertex " + std::to_string(i + 1) +
+                       " has a coordinate that is not finite");
+  const auto n = static_cast<long long>(mesh.vertices.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (const int v : mesh.faces[f])
+      if (v < 0 || v >= n)
+        throw InputError(source + ": face " + std::to_string(f + 1) + " refers to vertex " +
+                         std::to_string(v) + ", but the mesh has " + std::to_string(n) +
+                         " vertices");
+}
+
 void require_normals(const PointSet& points, const std::string& source, const std::string& why) {
   if (!points.has_normals()) io::fail(source, "the points have no normals; " + why);
 }

@@ -1,6 +1,7 @@
 // Metro-style two-sided surface distances: area-uniform samples on each mesh,
 // exact point-to-triangle distances to the other mesh through a CGAL AABB tree.
 #include <pdd/compare.h>
+#include <pdd/errors.h>
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -113,6 +114,12 @@ double surface_area(const TriangleMesh& mesh) {
   double area = 0;
   for (const auto& f : mesh.faces) area += face_area(mesh, f);
   return area;
+}
+
+void require_area(const TriangleMesh& mesh, const std::string& source) {
+  if (!(surface_area(mesh) > 0))
+    throw InputError(source + ": the mesh has no area (all " + std::to_string(mesh.faces.size()) +
+                     " faces are degenerate)");
 }
 
 // Hand-written rather than CGAL's Random_points_in_triangles_3 so that the

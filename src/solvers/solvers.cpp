@@ -21,6 +21,15 @@ SolverKind parse_solver_kind(const std::string& name) {
   throw InputError("unknown solver \"" + name + "\" (expected poisson, ssd or spectral)");
 }
 
+std::string normals_requirement(SolverKind kind) {
+  switch (kind) {
+    case SolverKind::kPoisson: return "the Poisson solver needs oriented normals (Eq. 13)";
+    case SolverKind::kSpectral: return "the spectral solver needs normals, oriented or not (Eq. 16)";
+    case SolverKind::kSsd: break;
+  }
+  return "the SSD solver fits the gradient of f to oriented normals (Eq. 15)";
+}
+
 LinearMethod parse_linear_method(const std::string& name) {
   std::string lower = name;
   std::transform(lower.begin(), lower.end(), lower.begin(),

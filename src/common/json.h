@@ -1,4 +1,4 @@
-// Hand-written JSON output for the commands (--json, --stats): the numbers and
+// Hand-written JSON and text output for the reports (report.h): the numbers and
 // strings of a JSON document. A JSON library would be one more dependency for
 // a few flat objects.
 #pragma once
@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <string>
 
-namespace pdd::cli {
+namespace pdd {
 
 // v with `digits` digits after the point; "null" when v is not finite (JSON
 // has no inf or nan).
@@ -45,4 +45,4 @@ inline std::string json_string(const std::string& s) {
   return out + "\"";
 }
 
-}  // namespace pdd::cli
+}  // namespace pdd
