@@ -12,11 +12,12 @@ packages=(
   libcli11-dev libgtest-dev libbenchmark-dev
   time jq  # bench/shared_data.sh: /usr/bin/time -v, JSON fields
   libcgal-demo  # bench/table1.sh: CGAL's data set (data/points_3/hippo1.ply)
+  python3-dev pybind11-dev python3-numpy python3-pytest  # the Python module and its tests
+  python3-open3d  # the Python module's Open3D conversions, tested when importable
 )
 if [ "${1:-}" = "--bench" ]; then
   packages+=(
     libhypre-dev mpi-default-dev  # bench/solvers.sh: BoomerAMG beside pdd's multigrid
-    python3-open3d python3-numpy  # bench/scale.sh: ../shared/tools/virtual_scan.py
   )
 fi
 

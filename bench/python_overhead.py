@@ -1,0 +1,115 @@
+#!/usr/bin/env python3
+"""The cost of the Python module over the command line (issue 18).
+
+For every input of ../shared/data/points (*.ply), the same reconstruction (default
+options, seed 0) through `pdd reconstruct` and through `pdd.reconstruct` in a fresh
+Debian python3, in alternation, ROUNDS times each: wall time and peak memory of each
+process (os.wait4), their ratios, and whether both wrote the same mesh. Then the time
+to convert a 1M-point array into the library and back.
+
+    bash scripts/build.sh && /usr/bin/python3 bench/python_overhead.py [ROUNDS] [--only REGEX]
+
+Prints a Markdown table and writes it to bench/results/python_overhead.md.
+"""
+
+import os
+import pathlib
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+root = pathlib.Path(__file__).resolve().parent.parent
+build = root / "build"
+data = root.parent / "shared" / "data" / "points"
+args = sys.argv[1:]
+only = None
+if "--only" in args:
+    i = args.index("--only")
+    only = re.compile(args[i + 1])
+    del args[i:i + 2]
+rounds = int(args[0]) if args else 3
+
+PYTHON_RUN = """
+import sys, pdd
+cloud = pdd.read_points(sys.argv[1])
+pdd.write_mesh(sys.argv[2], pdd.reconstruct(cloud, seed=0))
+"""
+
+
+def run(command, env=None):
+    """Wall seconds and peak resident memory (MB) of one process."""
+    start = time.monotonic()
+    process = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.PIPE)
+    _, status, usage = os.wait4(process.pid, 0)
+    seconds = time.monotonic() - start
+    if status != 0:
+        sys.exit(f"failed: {' '.join(map(str, command))}: {process.stderr.read().decode()}")
+    process.stderr.close()
+    return seconds, usage.ru_maxrss / 1024
+
+
+def main():
+    env = dict(os.environ, PYTHONPATH=str(build / "python"))
+    inputs = sorted(p for p in data.glob("*.ply") if not only or only.search(p.stem))
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for path in inputs:
+            cli_out, py_out = pathlib.Path(tmp, "cli.ply"), pathlib.Path(tmp, "py.ply")
+            cli, py = [], []
+            for _ in range(rounds):
+                cli.append(run([build / "pdd", "reconstruct", path, "-o", cli_out, "--quiet",
+                                "--seed", "0"]))
+                py.append(run(["/usr/bin/python3", "-c", PYTHON_RUN, path, py_out], env))
+            same = cli_out.read_bytes() == py_out.read_bytes()
+            t_cli = statistics.median(s for s, _ in cli)
+            t_py = statistics.median(s for s, _ in py)
+            m_cli = max(m for _, m in cli)
+            m_py = max(m for _, m in py)
+            rows.append((path.stem, t_cli, t_py, m_cli, m_py, same))
+            print(f"{path.stem}: {t_cli:.2f} s / {t_py:.2f} s, {m_cli:.0f} / {m_py:.0f} MB, "
+                  f"same mesh {same}", flush=True)
+
+    sys.path.insert(0, str(build / "python"))
+    import numpy as np
+    import pdd
+
+    points = np.random.default_rng(0).random((1_000_000, 3))
+    conversions = []
+    for array in (points, points.astype(np.float32), np.asfortranarray(points)):
+        best = min(timed(lambda: pdd._pdd.convert_points(array)) for _ in range(5))
+        conversions.append((str(array.dtype) + (" F-order" if array.flags.f_contiguous else ""),
+                            best))
+
+    lines = [
+        f"Python module overhead ({rounds} alternating rounds per input, medians; peak = "
+        "max RSS of the process)",
+        "",
+        "| input | CLI s | Python s | time ratio | CLI MB | Python MB | memory ratio | same mesh |",
+        "| --- | --- | --- | --- | --- | --- | --- | --- |",
+    ]
+    for name, t_cli, t_py, m_cli, m_py, same in rows:
+        lines.append(f"| {name} | {t_cli:.2f} | {t_py:.2f} | {t_py / t_cli:.3f} | {m_cli:.0f} | "
+                     f"{m_py:.0f} | {m_py / m_cli:.3f} | {'yes' if same else 'NO'} |")
+    if rows:
+        lines.append(f"| **total** | {sum(r[1] for r in rows):.1f} | {sum(r[2] for r in rows):.1f}"
+                     f" | {sum(r[2] for r in rows) / sum(r[1] for r in rows):.3f} | | | "
+                     f"{statistics.mean(r[4] / r[3] for r in rows):.3f} (mean) | |")
+    lines += ["", "1M points into the library and back (best of 5):", ""]
+    lines += [f"- {name}: {seconds * 1000:.1f} ms" for name, seconds in conversions]
+    table = "\n".join(lines) + "\n"
+    print(table)
+    (root / "bench" / "results" / "python_overhead.md").write_text(table)
+
+
+def timed(function):
+    start = time.perf_counter()
+    function()
+    return time.perf_counter() - start
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,285 @@
+"""pdd: closed triangle meshes from point clouds by progressive discrete domains.
+
+Zhao, Alliez, Boubekeur, Busé, Thiery, SGP 2021. A thin client of the same
+C++ library as the command line `pdd`:
+
+    import numpy as np, pdd
+    mesh = pdd.reconstruct(points, normals)          # (n, 3) arrays
+    mesh.vertices, mesh.faces, mesh.stats            # (v, 3) float64, (f, 3) int32, dict
+    pdd.write_mesh("out.ply", mesh)
+    pdd.quality(mesh)["surface"]["genus"]
+
+Every option of `pdd reconstruct` is a keyword argument of `reconstruct` with
+the same name (dashes as underscores) and default. Bad input or options raise
+ValueError, a failed solve RuntimeError, with the command line's messages.
+"""
+
+from __future__ import annotations
+
+import inspect
+import json
+import numbers
+import warnings
+
+import numpy as np
+
+from . import _pdd
+from ._pdd import Progress
+
+__version__ = _pdd.__version__
+__all__ = [
+    "Cancelled",
+    "Mesh",
+    "PointCloud",
+    "Progress",
+    "compare",
+    "quality",
+    "read_mesh",
+    "read_points",
+    "reconstruct",
+    "write_mesh",
+]
+
+
+class Cancelled(Exception):
+    """A reconstruction stopped because its progress callback returned False."""
+
+
+def _open3d():
+    try:
+        import open3d
+    except ImportError as error:
+        raise ImportError(
+            "open3d is not installed (Debian: apt install python3-open3d); "
+            "pdd does not need it, only its Open3D conversions do"
+        ) from error
+    return open3d
+
+
+def _is_open3d(obj) -> bool:
+    return type(obj).__module__.split(".")[0] == "open3d"
+
+
+class PointCloud:
+    """Points (n, 3) and, when known, their normals (n, 3), as numpy arrays."""
+
+    def __init__(self, points, normals=None):
+        self.points = np.asarray(points)
+        self.normals = None if normals is None else np.asarray(normals)
+
+    def __len__(self) -> int:
+        return len(self.points)
+
+    def __repr__(self) -> str:
+        return f"PointCloud({len(self)} points, {'with' if self.normals is not None else 'no'} normals)"
+
+    def to_open3d(self):
+        """This point cloud as an open3d.geometry.PointCloud (needs open3d)."""
+        o3d = _open3d()
+        cloud = o3d.geometry.PointCloud(
+            o3d.utility.Vector3dVector(np.asarray(self.points, dtype=np.float64)))
+        if self.normals is not None:
+            cloud.normals = o3d.utility.Vector3dVector(np.asarray(self.normals, dtype=np.float64))
+        return cloud
+
+    @classmethod
+    def from_open3d(cls, cloud) -> "PointCloud":
+        """The points and normals (when it has them) of an open3d.geometry.PointCloud."""
+        normals = np.asarray(cloud.normals) if cloud.has_normals() else None
+        return cls(np.asarray(cloud.points), normals)
+
+
+class Mesh:
+    """A triangle mesh: vertices (n, 3), faces (m, 3) indexing them, counter-clockwise
+    seen from outside. A reconstruction's mesh has float64 vertices, int32 faces and
+    `stats`, the run's statistics (the content of `pdd reconstruct --stats`)."""
+
+    def __init__(self, vertices, faces, stats=None):
+        self.vertices = np.asarray(vertices)
+        self.faces = np.asarray(faces)
+        self.stats = stats
+
+    def __repr__(self) -> str:
+        return f"Mesh({len(self.vertices)} vertices, {len(self.faces)} faces)"
+
+    def to_open3d(self):
+        """This mesh as an open3d.geometry.TriangleMesh (needs open3d)."""
+        o3d = _open3d()
+        return o3d.geometry.TriangleMesh(
+            o3d.utility.Vector3dVector(np.asarray(self.vertices, dtype=np.float64)),
+            o3d.utility.Vector3iVector(np.asarray(self.faces, dtype=np.int32)))
+
+    @classmethod
+    def from_open3d(cls, mesh) -> "Mesh":
+        """The vertices and triangles of an open3d.geometry.TriangleMesh."""
+        return cls(np.asarray(mesh.vertices), np.asarray(mesh.triangles))
+
+
+def _as_mesh(mesh, what: str) -> Mesh:
+    if isinstance(mesh, Mesh):
+        return mesh
+    if _is_open3d(mesh):
+        return Mesh.from_open3d(mesh)
+    if isinstance(mesh, tuple) and len(mesh) == 2:
+        return Mesh(*mesh)
+    raise ValueError(f"{what}: expected a pdd.Mesh, an open3d TriangleMesh or a "
+                     f"(vertices, faces) tuple, got {type(mesh).__name__}")
+
+
+# ------------------------------------------------------------------ options
+
+_SPECS = {spec["name"].replace("-", "_"): spec for spec in _pdd.option_specs()}
+
+
+def _default(spec):
+    text, kind = spec["default"], spec["kind"]
+    if text == "":
+        return None  # derived from the input; the help says how
+    if kind == "flag":
+        return text == "true"
+    if kind in ("integer", "seed"):
+        return int(text)
+    if kind == "number":
+        return float(text)
+    return text
+
+
+def _option_text(name: str, spec, value) -> str:
+    """The option's value as the command line would spell it; the library parses it."""
+    kind = spec["kind"]
+    is_bool = isinstance(value, (bool, np.bool_))
+    if kind == "flag" and is_bool:
+        return "true" if value else "false"
+    if kind == "choice" and isinstance(value, str):
+        return value
+    if kind in ("integer", "seed", "size") and isinstance(value, numbers.Integral) and not is_bool:
+        return str(int(value))
+    if kind == "number" and isinstance(value, numbers.Real) and not is_bool:
+        return repr(float(value))
+    if kind == "size" and isinstance(value, str):
+        return value
+    expected = {"flag": "True or False", "choice": "one of " + ", ".join(spec["choices"]),
+                "integer": "an integer", "seed": "an integer", "number": "a number",
+                "size": "a number of bytes or a size such as '8G'"}[kind]
+    raise ValueError(f"--{spec['name']}: must be {expected}, got {value!r}")
+
+
+def reconstruct(points, normals=None, *, progress=None, domain_out=None, save_iterations=None,
+                **options) -> Mesh:
+    # The signature and the docstring are set below from the library's option table.
+    if isinstance(points, PointCloud):
+        points, normals = points.points, points.normals if normals is None else normals
+    elif _is_open3d(points):
+        cloud = PointCloud.from_open3d(points)
+        points, normals = cloud.points, cloud.normals if normals is None else normals
+    pairs = []
+    for name, value in options.items():
+        spec = _SPECS.get(name)
+        if spec is None:
+            raise TypeError(f"reconstruct() got an unexpected keyword argument {name!r}")
+        if value is not None:
+            pairs.append((name, _option_text(name, spec, value)))
+    if progress is not None and not callable(progress):
+        raise ValueError(f"progress: expected a callable or None, got {type(progress).__name__}")
+    result = _pdd.reconstruct(points, normals, pairs, progress,
+                              "" if domain_out is None else str(domain_out),
+                              "" if save_iterations is None else str(save_iterations))
+    for warning in result["warnings"]:
+        warnings.warn(warning, stacklevel=2)
+    if result["cancelled"]:
+        raise Cancelled("the progress callback returned False: the run stopped, no mesh")
+    if result["memory_budget_note"]:
+        warnings.warn(result["memory_budget_note"], stacklevel=2)
+    return Mesh(result["vertices"], result["faces"], json.loads(result["stats"]))
+
+
+def _reconstruct_docstring() -> str:
+    lines = [
+        "Reconstructs a closed triangle mesh from points and normals (§3 of the paper).",
+        "",
+        "points: (n, 3) array of float64 or float32 (any strides), a pdd.PointCloud or an",
+        "    open3d PointCloud. normals: (n, 3) array or None (then the points' own).",
+        "Returns a pdd.Mesh with vertices (float64), faces (int32) and stats (dict).",
+        "",
+        "progress: called between stages with a pdd.Progress (stage, iteration, vertices,",
+        "    elapsed_seconds); returning False stops the run and raises pdd.Cancelled.",
+        "    Ctrl-C stops it too (KeyboardInterrupt), at the next stage.",
+        "domain_out: also write the final domain with f as a .vtu (ParaView).",
+        "save_iterations: a folder for every iteration's isosurface and domain.",
+        "",
+        "Options (as `pdd reconstruct --OPTION`; None keeps the default):",
+    ]
+    for name, spec in _SPECS.items():
+        default = _default(spec)
+        shown = "derived from the input" if default is None else repr(default)
+        if spec["choices"]:
+            shown += "; one of " + ", ".join(spec["choices"])
+        lines.append(f"  {name} ({shown}): {spec['help']}")
+    lines += ["", "Raises ValueError for bad input or options, RuntimeError for a failed solve."]
+    return "\n".join(lines)
+
+
+reconstruct.__doc__ = _reconstruct_docstring()
+reconstruct.__signature__ = inspect.Signature(
+    [inspect.Parameter("points", inspect.Parameter.POSITIONAL_OR_KEYWORD),
+     inspect.Parameter("normals", inspect.Parameter.POSITIONAL_OR_KEYWORD, default=None)]
+    + [inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=_default(spec))
+       for name, spec in _SPECS.items()]
+    + [inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=None)
+       for name in ("progress", "domain_out", "save_iterations")],
+    return_annotation=Mesh)
+
+
+# ----------------------------------------------------------- files, metrics
+
+def read_points(path) -> PointCloud:
+    """Reads a point set (.ply .xyz .pwn .xyzn .off .obj) as `pdd reconstruct` does: the
+    same checks and messages (ValueError); exact duplicates merged, with a warning."""
+    points, normals, notes = _pdd.read_points(str(path))
+    for note in notes:
+        warnings.warn(note, stacklevel=2)
+    return PointCloud(points, normals)
+
+
+def read_mesh(path) -> Mesh:
+    """Reads a triangle mesh (.ply .off .obj); ValueError naming the file when it is bad."""
+    vertices, faces = _pdd.read_mesh(str(path))
+    return Mesh(vertices, faces)
+
+
+def write_mesh(path, mesh, *, ascii: bool = False) -> None:
+    """Writes a mesh (.ply .off .obj, by the extension) atomically: the file appears whole
+    or not at all. PLY vertices are written as doubles (exact round trip); ascii=True
+    writes a text PLY."""
+    mesh = _as_mesh(mesh, "mesh")
+    _pdd.write_mesh(str(path), mesh.vertices, mesh.faces, bool(ascii))
+
+
+def quality(mesh) -> dict:
+    """Triangle quality and surface checks, the content of `pdd quality --json`:
+    {"vertices", "faces", "triangles": {angles, histogram}, "surface": {manifold,
+    closed, components, genus, ...}}."""
+    mesh = _as_mesh(mesh, "mesh")
+    report = json.loads(_pdd.quality(mesh.vertices, mesh.faces))
+    del report["file"]
+    return report
+
+
+_COMPARE = _pdd.compare_defaults()  # those of `pdd compare`
+
+
+def compare(a, b, *, samples: int = _COMPARE["samples"],
+            fscore_threshold: float = _COMPARE["fscore_threshold"],
+            seed: int = _COMPARE["seed"]) -> dict:
+    """Two-sided distances between meshes a and b (b the reference), the content of
+    `pdd compare --json`: Hausdorff, Chamfer-L1, means, RMS, F-score, each also relative
+    to b's bounding-box diagonal (keys ending in _relative)."""
+    a, b = _as_mesh(a, "a"), _as_mesh(b, "b")
+    if isinstance(samples, bool) or not isinstance(samples, numbers.Integral) or samples < 1:
+        raise ValueError(f"samples: must be an integer from 1 to 2^40, got {samples!r}")
+    if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0:
+        raise ValueError(f"seed: must be an integer >= 0, got {seed!r}")
+    report = json.loads(_pdd.compare(a.vertices, a.faces, b.vertices, b.faces, int(samples),
+                                     float(fscore_threshold), int(seed)))
+    del report["a"], report["b"]
+    return report
