@@ -19,6 +19,7 @@ from __future__ import annotations
 import inspect
 import json
 import numbers
+import textwrap
 import warnings
 
 import numpy as np
@@ -211,10 +212,11 @@ def _reconstruct_docstring() -> str:
     ]
     for name, spec in _SPECS.items():
         default = _default(spec)
-        shown = "derived from the input" if default is None else repr(default)
+        shown = "None: chosen by the run" if default is None else repr(default)
         if spec["choices"]:
             shown += "; one of " + ", ".join(spec["choices"])
-        lines.append(f"  {name} ({shown}): {spec['help']}")
+        lines += textwrap.wrap(f"{name} ({shown}): {spec['help']}", 88,
+                               initial_indent="  ", subsequent_indent="      ")
     lines += ["", "Raises ValueError for bad input or options, RuntimeError for a failed solve."]
     return "\n".join(lines)
 

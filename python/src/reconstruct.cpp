@@ -7,6 +7,8 @@
 #include <pdd/pipeline.h>
 #include <pdd/report.h>
 
+#include <malloc.h>
+
 #include <exception>
 
 #include "bindings.h"
@@ -49,6 +51,18 @@ py::dict reconstruct(const py::handle& points, const py::handle& normals,
   Result result;
   {
     py::gil_scoped_release release;
+    // As the command line does (apps/main.cpp): freed blocks stay in the heap for the next
+    // iteration instead of going back to the kernel as fresh zeroed pages; glibc's
+    // defaults come back, and the heap is trimmed, once the run is over.
+    mallopt(M_MMAP_THRESHOLD, 1 << 30);
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);
+    struct RestoreMalloc {
+      ~RestoreMalloc() {
+        mallopt(M_MMAP_THRESHOLD, 128 * 1024);
+        mallopt(M_TRIM_THRESHOLD, 128 * 1024);
+        malloc_trim(0);
+      }
+    } restore;
     result = pdd::reconstruct(input, run_options);
   }
   if (raised) std::rethrow_exception(raised);
