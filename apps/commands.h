@@ -11,5 +11,6 @@ namespace pdd::cli {
 void add_reconstruct_command(CLI::App& app);
 void add_quality_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
+void add_normals_command(CLI::App& app);
 
 }  // namespace pdd::cli

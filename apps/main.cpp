@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   pdd::cli::add_reconstruct_command(app);
   pdd::cli::add_quality_command(app);
   pdd::cli::add_compare_command(app);
+  pdd::cli::add_normals_command(app);
 
   // Exit codes: 0 success, 1 runtime failure, 2 bad usage or bad input.
   try {

@@ -12,7 +12,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -20,6 +19,7 @@
 #include <utility>
 
 #include "commands.h"
+#include "table_options.h"
 
 namespace pdd::cli {
 
@@ -33,7 +33,7 @@ struct ReconstructArgs {
   std::string domain_output;  // "" or a .vtu for the final domain with f
   std::string stats_output;   // "" or a .json for the per-iteration statistics
   std::string iterations_dir; // "" or a folder for every iteration's isosurface and domain
-  std::map<std::string, std::string> values;  // the options given, by name (options.h)
+  std::shared_ptr<OptionValues> values = std::make_shared<OptionValues>();
   ReconstructOptions options;
   bool ascii = false;  // PLY output as ASCII instead of binary
   bool quiet = false;  // no progress line, no table
@@ -57,7 +57,7 @@ ProgressCallback progress_printer() {
 }
 
 void reconstruct(ReconstructArgs& args) {
-  for (const auto& [name, value] : args.values) set_reconstruct_option(args.options, name, value);
+  apply_table_options(*args.values, args.options);
   // Output paths first, so that a typo costs nothing.
   check_output_path(args.output, OutputKind::kMesh);
   if (!args.domain_output.empty()) check_output_path(args.domain_output, OutputKind::kDomain);
@@ -68,15 +68,15 @@ void reconstruct(ReconstructArgs& args) {
   for (const std::string& warning : report.warnings) {
     std::cerr << "pdd: warning: " << warning << "\n";
   }
-  require_normals(points, args.input, normals_requirement(args.options.solver.kind));
+  args.options.source = args.input;
 
   if (!args.quiet) args.options.progress = progress_printer();
   if (!args.iterations_dir.empty())
     args.options.on_iteration = iteration_files(args.iterations_dir, args.ascii);
   const Result result = pdd::reconstruct(points, args.options);
   if (!args.quiet && ::isatty(STDERR_FILENO)) std::cerr << "\n";
-  if (const std::string note = memory_budget_note(result); !note.empty())
-    std::cerr << "pdd: " << note << "\n";
+  for (const std::string& note : {normals_note(result), memory_budget_note(result)})
+    if (!note.empty()) std::cerr << "pdd: " << note << "\n";
   if (result.mesh.faces.empty())
     throw std::runtime_error("reconstruct: " + args.input +
                              ": the isosurface is empty (the solver found no surface)");
@@ -109,25 +109,7 @@ void add_reconstruct_command(CLI::App& app) {
   cmd->add_option("INPUT", args->input, "Point set: .ply .xyz .pwn .xyzn .off .obj")->required();
   cmd->add_option("-o,--output", args->output, "Output mesh: .ply .off .obj")->required();
   // The options that shape the run: the library's table, shared with the Python module.
-  for (const OptionSpec& spec : reconstruct_option_specs()) {
-    const std::string flag = "--" + spec.name;
-    const std::string name = spec.name;
-    if (spec.kind == OptionSpec::Kind::kFlag) {
-      cmd->add_flag_callback(flag, [args, name] { args->values[name] = "true"; }, spec.help);
-      continue;
-    }
-    CLI::Option* option = cmd->add_option_function<std::string>(
-        flag, [args, name](const std::string& value) { args->values[name] = value; }, spec.help);
-    switch (spec.kind) {
-      case OptionSpec::Kind::kChoice: option->check(CLI::IsMember(spec.choices)); break;
-      case OptionSpec::Kind::kNumber: option->type_name("FLOAT"); break;
-      case OptionSpec::Kind::kInteger: option->type_name("INT"); break;
-      case OptionSpec::Kind::kSeed: option->type_name("UINT"); break;
-      case OptionSpec::Kind::kSize: option->type_name("SIZE"); break;
-      case OptionSpec::Kind::kFlag: break;
-    }
-    if (!spec.default_text.empty()) option->default_str(spec.default_text);
-  }
+  add_table_options(cmd, args->values, [](const std::string&) { return true; });
   cmd->add_option("--domain-out", args->domain_output,
                   "Also write the final domain (tetrahedra and f) as a .vtu for ParaView");
   cmd->add_option("--stats", args->stats_output, "Write per-iteration statistics as JSON");

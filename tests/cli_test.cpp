@@ -85,17 +85,39 @@ TEST_F(CliTest, DegenerateInputOrMissingNormalsExitWithTwo) {
   EXPECT_EQ(flat.code, 2);
   EXPECT_NE(flat.err.find("lie in one plane"), std::string::npos) << flat.err;
 
-  PointSet bare = test::sample_sphere(50);
+  // Too few points to estimate normals from.
+  PointSet bare = test::sample_sphere(12);
   bare.normals.clear();
   write_points(path("bare.xyz"), bare);
   const Outcome run =
       pdd("reconstruct '" + path("bare.xyz") + "' -o '" + path("out.ply") + "' --solver poisson");
   EXPECT_EQ(run.code, 2);
   EXPECT_EQ(lines_of(run.err), 1u) << run.err;
-  EXPECT_NE(run.err.find(path("bare.xyz") + ": the points have no normals; the Poisson solver"),
+  EXPECT_NE(run.err.find(path("bare.xyz") + ": 12 points are too few to estimate normals from"),
             std::string::npos)
       << run.err;
   EXPECT_FALSE(fs::exists(path("out.ply")));
+}
+
+TEST_F(CliTest, PointsWithoutNormalsGetThemAndSaySo) {
+  PointSet bare = test::sample_sphere(1500);
+  bare.normals.clear();
+  write_points(path("bare.xyz"), bare);
+  const Outcome run = pdd("reconstruct '" + path("bare.xyz") + "' -o '" + path("out.ply") +
+                          "' --target-edge 0.15 --quiet");
+  EXPECT_EQ(run.code, 0) << run.err;
+  EXPECT_NE(run.err.find("pdd: normals estimated by jet fitting and oriented along a minimum "
+                         "spanning tree"),
+            std::string::npos)
+      << run.err;
+  EXPECT_TRUE(surface_topology(read_mesh(path("out.ply"))).closed);
+
+  // `pdd normals` writes what the run used: unit normals, all outward on a sphere.
+  const Outcome normals = pdd("normals '" + path("bare.xyz") + "' -o '" + path("n.ply") + "'");
+  EXPECT_EQ(normals.code, 0) << normals.err;
+  const PointSet with = read_points(path("n.ply"));
+  ASSERT_EQ(with.normals.size(), bare.size());
+  for (std::size_t i = 0; i < with.size(); ++i) EXPECT_GT(with.normals[i].dot(with.points[i]), 0.99);
 }
 
 TEST_F(CliTest, BadOutputIsRefusedBeforeReading) {

@@ -31,6 +31,26 @@ enum class DomainStrategy {
 DomainStrategy parse_domain_strategy(const std::string& name);  // InputError when unknown
 std::string to_string(DomainStrategy strategy);
 
+// What the run does with the input's normals (normals.h). Missing normals are
+// always estimated.
+enum class NormalsMode {
+  kKeep,      // use the given normals as they are
+  kOrient,    // keep their directions, orient them anew (their signs cannot be trusted)
+  kEstimate,  // replace them by estimated ones, oriented
+};
+NormalsMode parse_normals_mode(const std::string& name);  // InputError when unknown
+std::string to_string(NormalsMode mode);
+
+// How estimated or re-oriented normals get their signs.
+enum class Orientation {
+  kMst,       // propagation along a minimum spanning tree (normals.h, the peers' method)
+  kSpectral,  // along the gradient of a coarse progressive run of the spectral solver
+              // (§3.5, Eq. 16-17), which needs no orientation; then the full run
+  kMstSolve,  // kMst, then along the gradient of a coarse run of SSD with those normals
+};
+Orientation parse_orientation(const std::string& name);  // InputError when unknown
+std::string to_string(Orientation orientation);
+
 enum class SizingKind { kUniform, kAdaptive };
 SizingKind parse_sizing_kind(const std::string& name);  // InputError when unknown
 
@@ -53,6 +73,10 @@ using IterationCallback =
 
 struct ReconstructOptions {
   DomainStrategy strategy = DomainStrategy::kProgressive;
+  NormalsMode normals = NormalsMode::kKeep;      // missing normals are estimated whatever this is
+  Orientation orientation = Orientation::kMst;   // of estimated or re-oriented normals
+  int normal_neighbors = 18;                     // k of the estimation and the MST
+  std::string source = "points";                 // names the input in error messages
   DomainOptions domain;        // §3.2: sphere 1.4 r, 100 points, radius-edge 1.3
   SolverOptions solver;        // §3.5: SSD by default
   OptimizerOptions optimizer;  // §3.3: lambda_a = 60, lambda_m = 3 (optimize.h)
@@ -132,6 +156,16 @@ struct MemoryBudget {
 // "500M", "1.5GiB". InputError naming `what` when it is not one.
 std::size_t parse_memory_size(const std::string& text, const std::string& what = "--max-memory");
 
+// What the run did to the input's normals.
+struct NormalsReport {
+  bool estimated = false;       // by jet fitting (the input had none, or NormalsMode::kEstimate)
+  bool oriented = false;        // by `orientation` (estimated, or NormalsMode::kOrient)
+  Orientation orientation = Orientation::kMst;
+  std::size_t flipped = 0;      // normals whose sign the orientation changed
+  std::size_t unreached = 0;    // kMst: normals the tree did not reach (left as they were)
+  double seconds = 0;
+};
+
 struct Result {
   TriangleMesh mesh;  // the isosurface of the final solve, outward-facing, without its small
                       // components, cleaned up unless ReconstructOptions::cleanup is off
@@ -140,6 +174,7 @@ struct Result {
   double noise = 0;  // SSD with the automatic value weight: estimate_noise(points) (solvers.h);
                      // otherwise 0. The weight of each solve is in its SolverStats.
   MemoryBudget budget;
+  NormalsReport normals;
   double seconds = 0;
   bool cancelled = false;  // the progress callback returned false: mesh is empty
 };
@@ -148,6 +183,13 @@ struct Result {
 // octree_depth = 0): its finest cells are about the input's average spacing,
 // over a cube 5 % larger than the bounding box's largest side.
 int default_octree_depth(const PointSet& points);
+
+// The input with the normals a run would use (its first step): `points` as
+// they are, or with normals estimated and/or oriented as options.normals,
+// orientation and normal_neighbors say. For `pdd normals` and
+// pdd.estimate_normals. InputError when normals cannot be estimated.
+PointSet prepare_normals(const PointSet& points, const ReconstructOptions& options,
+                         NormalsReport* report = nullptr);
 
 // Reconstructs a closed surface from `points`. Throws InputError for bad
 // input or options, SolverError when a solve fails.

@@ -21,6 +21,10 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
 // One line per iteration, aligned columns.
 std::string statistics_table(const Result& result);
 
+// One line (no newline) when the run estimated or oriented the normals: how,
+// and how many it flipped; "" otherwise.
+std::string normals_note(const Result& result);
+
 // One line (no newline) when the memory budget changed the run: the sizing
 // coarsened, or refinement stopped at the vertex budget; "" otherwise.
 std::string memory_budget_note(const Result& result);

@@ -34,6 +34,7 @@ __all__ = [
     "PointCloud",
     "Progress",
     "compare",
+    "estimate_normals",
     "quality",
     "read_mesh",
     "read_points",
@@ -129,7 +130,11 @@ def _as_mesh(mesh, what: str) -> Mesh:
 
 # ------------------------------------------------------------------ options
 
-_SPECS = {spec["name"].replace("-", "_"): spec for spec in _pdd.option_specs()}
+# Python names of the command line's options: dashes as underscores; `--normals` (what to do
+# with the input's normals) is `normals_mode`, since `normals` is the array itself.
+_RENAMED = {"normals": "normals_mode"}
+_SPECS = {_RENAMED.get(spec["name"], spec["name"].replace("-", "_")): spec
+          for spec in _pdd.option_specs()}
 
 
 def _default(spec):
@@ -168,18 +173,14 @@ def _option_text(name: str, spec, value) -> str:
 def reconstruct(points, normals=None, *, progress=None, domain_out=None, save_iterations=None,
                 **options) -> Mesh:
     # The signature and the docstring are set below from the library's option table.
-    if isinstance(points, PointCloud):
-        points, normals = points.points, points.normals if normals is None else normals
-    elif _is_open3d(points):
-        cloud = PointCloud.from_open3d(points)
-        points, normals = cloud.points, cloud.normals if normals is None else normals
+    points, normals = _as_points(points, normals)
     pairs = []
     for name, value in options.items():
         spec = _SPECS.get(name)
         if spec is None:
             raise TypeError(f"reconstruct() got an unexpected keyword argument {name!r}")
         if value is not None:
-            pairs.append((name, _option_text(name, spec, value)))
+            pairs.append((spec["name"], _option_text(name, spec, value)))
     if progress is not None and not callable(progress):
         raise ValueError(f"progress: expected a callable or None, got {type(progress).__name__}")
     result = _pdd.reconstruct(points, normals, pairs, progress,
@@ -230,6 +231,32 @@ reconstruct.__signature__ = inspect.Signature(
     + [inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=None)
        for name in ("progress", "domain_out", "save_iterations")],
     return_annotation=Mesh)
+
+
+def _as_points(points, normals):
+    """(points, normals) from arrays, a pdd.PointCloud or an open3d PointCloud."""
+    if isinstance(points, PointCloud):
+        return points.points, points.normals if normals is None else normals
+    if _is_open3d(points):
+        cloud = PointCloud.from_open3d(points)
+        return cloud.points, cloud.normals if normals is None else normals
+    return points, normals
+
+
+def estimate_normals(points, normals=None, *,
+                     normals_mode: str = _default(_SPECS["normals_mode"]),
+                     orientation: str = _default(_SPECS["orientation"]),
+                     normal_neighbors: int = _default(_SPECS["normal_neighbors"]),
+                     threads: int = 0) -> PointCloud:
+    """The normals a reconstruction would use, as `pdd normals` writes them: missing ones
+    estimated by jet fitting and oriented; normals_mode="orient" re-orients given ones,
+    "estimate" replaces them (as in reconstruct). Returns a pdd.PointCloud."""
+    points, normals = _as_points(points, normals)
+    pairs = [(_SPECS[name]["name"], _option_text(name, _SPECS[name], value)) for name, value in
+             [("normals_mode", normals_mode), ("orientation", orientation),
+              ("normal_neighbors", normal_neighbors), ("threads", threads)]]
+    p, n, _, _ = _pdd.prepare_normals(points, normals, pairs)
+    return PointCloud(p, n)
 
 
 # ----------------------------------------------------------- files, metrics

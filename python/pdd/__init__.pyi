@@ -50,6 +50,9 @@ def reconstruct(
     normals: Optional[ArrayLike] = None,
     *,
     solver: Literal["ssd", "poisson", "spectral"] = "ssd",
+    normals_mode: Literal["keep", "orient", "estimate"] = "keep",
+    orientation: Literal["mst"] = "mst",
+    normal_neighbors: int = 18,
     value_weight: Optional[float] = None,
     linear: Literal["multigrid", "cholmod"] = "multigrid",
     domain: Literal["progressive", "direct", "input", "octree"] = "progressive",
@@ -78,6 +81,10 @@ def reconstruct(
     domain_out: Optional[Path] = None,
     save_iterations: Optional[Path] = None,
 ) -> Mesh: ...
+def estimate_normals(points: Union[ArrayLike, PointCloud, Any], normals: Optional[ArrayLike] = None,
+                     *, normals_mode: Literal["keep", "orient", "estimate"] = "keep",
+                     orientation: Literal["mst"] = "mst", normal_neighbors: int = 18,
+                     threads: int = 0) -> PointCloud: ...
 def read_points(path: Path) -> PointCloud: ...
 def read_mesh(path: Path) -> Mesh: ...
 def write_mesh(path: Path, mesh: MeshLike, *, ascii: bool = False) -> None: ...

@@ -6,6 +6,7 @@
 #include <pdd/errors.h>
 #include <pdd/io.h>
 #include <pdd/options.h>
+#include <pdd/pipeline.h>
 #include <pdd/report.h>
 
 #include <pybind11/stl.h>
@@ -91,6 +92,23 @@ std::string compare_json(const py::handle& a_vertices, const py::handle& a_faces
   return comparison_report("a", "b", options, compare_surfaces(a, b, options), true);
 }
 
+// pdd.estimate_normals: the run's first step alone (pipeline.h, prepare_normals).
+py::tuple prepare_normals_arrays(const py::handle& points, const py::handle& normals,
+                                 const std::vector<std::pair<std::string, std::string>>& options) {
+  ReconstructOptions run_options;
+  for (const auto& [name, value] : options) set_reconstruct_option(run_options, name, value);
+  const PointSet input = validate_points(point_set_from_arrays(points, normals), "points");
+  Result result;
+  PointSet prepared;
+  {
+    py::gil_scoped_release release;
+    prepared = prepare_normals(input, run_options, &result.normals);
+  }
+  return py::make_tuple(array_from(std::move(prepared.points)),
+                        array_from(std::move(prepared.normals)), normals_note(result),
+                        result.normals.flipped);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_pdd, m) {
@@ -137,6 +155,8 @@ PYBIND11_MODULE(_pdd, m) {
   }, py::arg("points"));
   m.def("reconstruct", &pdd::python::reconstruct, py::arg("points"), py::arg("normals"), py::arg("options"),
         py::arg("progress"), py::arg("domain_out"), py::arg("save_iterations"));
+  m.def("prepare_normals", &prepare_normals_arrays, py::arg("points"), py::arg("normals"),
+        py::arg("options"));
   m.def("read_points", &read_points_arrays, py::arg("path"));
   m.def("read_mesh", &read_mesh_arrays, py::arg("path"));
   m.def("write_mesh", &write_mesh_arrays, py::arg("path"), py::arg("vertices"), py::arg("faces"),

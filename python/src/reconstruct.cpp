@@ -26,7 +26,6 @@ py::dict reconstruct(const py::handle& points, const py::handle& normals,
   ValidationReport report;
   const PointSet input =
       validate_points(point_set_from_arrays(points, normals), "points", &report);
-  require_normals(input, "points", normals_requirement(run_options.solver.kind));
   if (!save_iterations.empty())
     run_options.on_iteration = iteration_files(save_iterations, false);
 

@@ -153,3 +153,17 @@ def test_a_real_sigint_stops_a_run_without_a_callback(tmp_path):
     assert time.monotonic() - sent < 10  # the longest stage of this run is about a second
     assert child.returncode != 0 and "finished" not in out
     assert "KeyboardInterrupt" in err
+
+
+def test_points_without_normals_and_flipped_normals(sphere, sphere_mesh):
+    points, normals = sphere
+    bare = pdd.reconstruct(points, target_edge=EDGE, threads=2)
+    assert bare.stats["normals"]["estimated"] and bare.stats["normals"]["oriented"]
+    assert pdd.quality(bare)["surface"]["genus"] == 0
+    assert radial_error(bare).max() < 0.01
+    flipped = normals * np.where(np.arange(len(normals)) % 2 == 0, -1.0, 1.0)[:, None]
+    again = pdd.reconstruct(points, flipped, normals_mode="orient", target_edge=EDGE, threads=2)
+    np.testing.assert_array_equal(again.vertices, sphere_mesh.vertices)
+    cloud = pdd.estimate_normals(points)
+    assert cloud.normals.shape == points.shape
+    assert np.all(np.sum(cloud.normals * points, axis=1) > 0.99)  # unit, outward

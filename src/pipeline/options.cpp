@@ -105,6 +105,26 @@ std::vector<OptionSpec> make_specs() {
       "solver", "Implicit solver (§3.5)", {"ssd", "poisson", "spectral"}, parse_solver_kind,
       [](ReconstructOptions& o) -> SolverKind& { return o.solver.kind; },
       to_string(d.solver.kind)));
+  s.push_back(choice<NormalsMode>(
+      "normals",
+      "The input's normals: keep (use them; points without normals get estimated ones), "
+      "orient (keep their directions, orient them anew: for normals whose signs cannot be "
+      "trusted), estimate (replace them by estimated ones)",
+      {"keep", "orient", "estimate"}, parse_normals_mode,
+      [](ReconstructOptions& o) -> NormalsMode& { return o.normals; }, to_string(d.normals)));
+  s.push_back(choice<Orientation>(
+      "orientation",
+      "How estimated or re-oriented normals get their signs: spectral (along the gradient of "
+      "a coarse run of the spectral solver, which needs no orientation) or mst (propagation "
+      "along a minimum spanning tree of the neighbour graph)",
+      {"spectral", "mst", "mst+solve"}, parse_orientation,
+      [](ReconstructOptions& o) -> Orientation& { return o.orientation; },
+      to_string(d.orientation)));
+  s.push_back(integer("normal-neighbors",
+                      "Neighbours of each point for the normals' estimation (jet fitting) and "
+                      "the minimum spanning tree",
+                      [](ReconstructOptions& o) -> int& { return o.normal_neighbors; }, 6,
+                      1000));
   s.push_back(number(
       "value-weight",
       "SSD: weight alpha of f(p) = 0 at the samples (Eq. 15); larger follows the points more "

@@ -6,6 +6,7 @@
 #include <pdd/refine.h>
 
 #include "pipeline/memory_budget.h"
+#include "pipeline/normals_step.h"
 #include "pipeline/octree_domain.h"
 
 #include <Eigen/Core>
@@ -311,6 +312,40 @@ SizingKind parse_sizing_kind(const std::string& name) {
   throw InputError("unknown sizing '" + name + "' (uniform, adaptive)");
 }
 
+NormalsMode parse_normals_mode(const std::string& name) {
+  const std::string s = lower(name);
+  if (s == "keep") return NormalsMode::kKeep;
+  if (s == "orient") return NormalsMode::kOrient;
+  if (s == "estimate") return NormalsMode::kEstimate;
+  throw InputError("unknown normals mode '" + name + "' (keep, orient, estimate)");
+}
+
+std::string to_string(NormalsMode mode) {
+  switch (mode) {
+    case NormalsMode::kKeep: return "keep";
+    case NormalsMode::kOrient: return "orient";
+    case NormalsMode::kEstimate: return "estimate";
+  }
+  return "unknown";
+}
+
+Orientation parse_orientation(const std::string& name) {
+  const std::string s = lower(name);
+  if (s == "mst") return Orientation::kMst;
+  if (s == "spectral") return Orientation::kSpectral;
+  if (s == "mst+solve") return Orientation::kMstSolve;
+  throw InputError("unknown orientation '" + name + "' (mst, spectral, mst+solve)");
+}
+
+std::string to_string(Orientation orientation) {
+  switch (orientation) {
+    case Orientation::kMst: return "mst";
+    case Orientation::kSpectral: return "spectral";
+    case Orientation::kMstSolve: return "mst+solve";
+  }
+  return "unknown";
+}
+
 Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
   if (options.max_iterations < 1)
     throw InputError("reconstruct: at least one iteration is needed, got " +
@@ -329,14 +364,29 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
     threads.emplace(tbb::global_control::max_allowed_parallelism,
                     static_cast<std::size_t>(options.threads));
   const EigenThreads eigen_threads(options.threads);
+  // Normals estimated or oriented first when they are missing or untrusted.
+  PointSet with_new_normals;
+  NormalsReport normals;
+  const auto start = Clock::now();
+  const PointSet* prepared = nullptr;
+  try {
+    prepared = &detail::prepare_normals(points, options, with_new_normals, normals);
+  } catch (const detail::OrientationCancelled&) {
+    Result cancelled;
+    cancelled.cancelled = true;
+    return cancelled;
+  }
+  const PointSet& input = *prepared;
+  if (input.normals.size() != input.points.size())
+    throw InputError("reconstruct: " + std::to_string(input.normals.size()) + " normals for " +
+                     std::to_string(input.points.size()) + " points");
   // The input's noise for SSD's automatic value weight, once for all the solves.
   ReconstructOptions resolved = options;
   SsdOptions& ssd = resolved.solver.ssd;
-  const auto start = Clock::now();
   if (resolved.solver.kind == SolverKind::kSsd && ssd.alpha == 0 && ssd.noise < 0)
-    ssd.noise = estimate_noise(points);
-  const double seconds_noise = seconds_since(start);
-  Run run(points, resolved);
+    ssd.noise = estimate_noise(input);
+  const double seconds_before = seconds_since(start);
+  Run run(input, resolved);
   try {
     Result result = [&] {
       switch (resolved.strategy) {
@@ -348,7 +398,8 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
       throw InputError("reconstruct: unknown domain strategy");
     }();
     result.noise = std::max(0.0, ssd.noise);
-    result.seconds += seconds_noise;
+    result.seconds += seconds_before;
+    result.normals = normals;
     return result;
   } catch (const Cancelled&) {
   }

@@ -28,6 +28,14 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
       << "  \"vertices\": " << result.domain.num_vertices() << ",\n"
       << "  \"triangles\": " << result.mesh.faces.size() << ",\n"
       << "  \"isovertices\": " << result.mesh.vertices.size() << ",\n"
+      << "  \"normals\": {\"mode\": \"" << to_string(options.normals)
+      << "\", \"estimated\": " << (result.normals.estimated ? "true" : "false")
+      << ", \"oriented\": " << (result.normals.oriented ? "true" : "false")
+      << ", \"orientation\": \"" << to_string(result.normals.orientation)
+      << "\", \"neighbors\": " << options.normal_neighbors
+      << ", \"flipped\": " << result.normals.flipped
+      << ", \"unreached\": " << result.normals.unreached
+      << ", \"seconds\": " << number(result.normals.seconds) << "},\n"
       << "  \"memory_budget\": {\"bytes\": " << result.budget.bytes
       << ", \"vertices\": " << result.budget.vertices
       << ", \"predicted_vertices\": " << result.budget.predicted_vertices
@@ -105,6 +113,22 @@ std::string statistics_table(const Result& result) {
   std::snprintf(line, sizeof line, "total %.2f s\n", result.seconds);
   out << line;
   return out.str();
+}
+
+std::string normals_note(const Result& result) {
+  const NormalsReport& n = result.normals;
+  if (!n.oriented) return "";
+  std::string line = std::string("normals ") + (n.estimated ? "estimated by jet fitting and " : "") +
+                     "oriented " +
+                     (n.orientation == Orientation::kMst ? "along a minimum spanning tree"
+                      : n.orientation == Orientation::kSpectral
+                          ? "along the gradient of a coarse spectral run"
+                          : "along a minimum spanning tree, then a coarse SSD run's gradient") +
+                     " (--normals, --orientation): " + std::to_string(n.flipped) + " flipped";
+  if (n.unreached > 0) line += ", " + std::to_string(n.unreached) + " not reached by the tree";
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, " in %.1f s", n.seconds);
+  return line + seconds;
 }
 
 std::string memory_budget_note(const Result& result) {

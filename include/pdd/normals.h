@@ -1,0 +1,42 @@
+// Normals for point sets that come without them, or with an orientation that
+// cannot be trusted (photogrammetry, merged scans): estimation by jet fitting
+// and orientation by propagation along a minimum spanning tree, both from
+// CGAL's Point_set_processing_3. The pipeline (pipeline.h) can also orient
+// them along the gradient of a coarse solve that needs no orientation.
+#pragma once
+
+#include <pdd/types.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pdd {
+
+// The fewest points from which normals are estimated: a quadratic jet needs six
+// neighbours, and the neighbourhoods must not all be the whole set.
+constexpr std::size_t kMinPointsForNormals = 16;
+
+// Unit normals of unknown sign by fitting a quadratic jet (osculating
+// quadric) to each point's k nearest neighbours (CGAL::jet_estimate_normals);
+// k adapts the neighbourhood's radius to the local density. Throws
+// InputError naming `source` when there are fewer than kMinPointsForNormals points.
+std::vector<Vec3> estimate_normals(const std::vector<Vec3>& points, int neighbors,
+                                   const std::string& source);
+
+// Orients `normals` consistently (flipping some) by propagating the
+// orientation of the highest point (made to face +z) along a minimum spanning
+// tree of the k-nearest-neighbour graph weighted by 1 - |n_i . n_j|
+// (CGAL::mst_orient_normals, Hoppe et al. 1992), in each connected component
+// of the graph from its own highest point. Returns the number of normals it
+// flipped; `unreached` (when given) gets those left as they were: components
+// of fewer than three points.
+std::size_t orient_normals_mst(const std::vector<Vec3>& points, std::vector<Vec3>& normals,
+                               int neighbors, std::size_t* unreached = nullptr);
+
+// Flips `fraction` of the normals, chosen by `seed` (for the tests and
+// bench/unoriented.sh: inputs whose orientation cannot be trusted).
+void flip_random_normals(std::vector<Vec3>& normals, double fraction, std::uint64_t seed);
+
+}  // namespace pdd
