@@ -70,7 +70,7 @@ def open3d_poisson(xyz, out):
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--only", default="")
-    parser.add_argument("--designs", default="mst,mst+solve")
+    parser.add_argument("--designs", default="spectral,mst")
     args = parser.parse_args()
     designs = args.designs.split(",")
     rows = []

@@ -106,9 +106,7 @@ TEST_F(CliTest, PointsWithoutNormalsGetThemAndSaySo) {
   const Outcome run = pdd("reconstruct '" + path("bare.xyz") + "' -o '" + path("out.ply") +
                           "' --target-edge 0.15 --quiet");
   EXPECT_EQ(run.code, 0) << run.err;
-  EXPECT_NE(run.err.find("pdd: normals estimated by jet fitting and oriented along a minimum "
-                         "spanning tree"),
-            std::string::npos)
+  EXPECT_NE(run.err.find("pdd: normals estimated by jet fitting and oriented"), std::string::npos)
       << run.err;
   EXPECT_TRUE(surface_topology(read_mesh(path("out.ply"))).closed);
 

@@ -35,6 +35,14 @@ std::vector<Vec3> estimate_normals(const std::vector<Vec3>& points, int neighbor
 std::size_t orient_normals_mst(const std::vector<Vec3>& points, std::vector<Vec3>& normals,
                                int neighbors, std::size_t* unreached = nullptr);
 
+// Splits the points into segments over which the normals' relative signs
+// are reliable (k-nearest-neighbour links between normals within 26 degrees
+// of parallel, each a step within 12 degrees of both tangent planes, so not
+// across a thin part; strongest first) and makes each segment
+// consistent, flipping some normals. Returns each point's segment (a point index).
+std::vector<int> orient_segments(const std::vector<Vec3>& points, std::vector<Vec3>& normals,
+                                 int neighbors);
+
 // Flips `fraction` of the normals, chosen by `seed` (for the tests and
 // bench/unoriented.sh: inputs whose orientation cannot be trusted).
 void flip_random_normals(std::vector<Vec3>& normals, double fraction, std::uint64_t seed);

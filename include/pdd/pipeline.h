@@ -44,9 +44,9 @@ std::string to_string(NormalsMode mode);
 // How estimated or re-oriented normals get their signs.
 enum class Orientation {
   kMst,       // propagation along a minimum spanning tree (normals.h, the peers' method)
-  kSpectral,  // along the gradient of a coarse progressive run of the spectral solver
-              // (§3.5, Eq. 16-17), which needs no orientation; then the full run
-  kMstSolve,  // kMst, then along the gradient of a coarse run of SSD with those normals
+  kSpectral,  // segments of reliably consistent normals, each turned by the majority of
+              // its points along the gradient of a coarse run of the spectral solver
+              // (§3.5, Eq. 16-17), which needs no orientation
 };
 Orientation parse_orientation(const std::string& name);  // InputError when unknown
 std::string to_string(Orientation orientation);
@@ -74,7 +74,7 @@ using IterationCallback =
 struct ReconstructOptions {
   DomainStrategy strategy = DomainStrategy::kProgressive;
   NormalsMode normals = NormalsMode::kKeep;      // missing normals are estimated whatever this is
-  Orientation orientation = Orientation::kMst;   // of estimated or re-oriented normals
+  Orientation orientation = Orientation::kSpectral;  // of estimated or re-oriented normals
   int normal_neighbors = 18;                     // k of the estimation and the MST
   std::string source = "points";                 // names the input in error messages
   DomainOptions domain;        // §3.2: sphere 1.4 r, 100 points, radius-edge 1.3
@@ -160,9 +160,10 @@ std::size_t parse_memory_size(const std::string& text, const std::string& what =
 struct NormalsReport {
   bool estimated = false;       // by jet fitting (the input had none, or NormalsMode::kEstimate)
   bool oriented = false;        // by `orientation` (estimated, or NormalsMode::kOrient)
-  Orientation orientation = Orientation::kMst;
+  Orientation orientation = Orientation::kSpectral;
   std::size_t flipped = 0;      // normals whose sign the orientation changed
   std::size_t unreached = 0;    // kMst: normals the tree did not reach (left as they were)
+  std::size_t segments = 0;     // kSpectral: segments of consistent normals
   double seconds = 0;
 };
 

@@ -51,7 +51,7 @@ def reconstruct(
     *,
     solver: Literal["ssd", "poisson", "spectral"] = "ssd",
     normals_mode: Literal["keep", "orient", "estimate"] = "keep",
-    orientation: Literal["mst"] = "mst",
+    orientation: Literal["spectral", "mst"] = "spectral",
     normal_neighbors: int = 18,
     value_weight: Optional[float] = None,
     linear: Literal["multigrid", "cholmod"] = "multigrid",
@@ -83,7 +83,7 @@ def reconstruct(
 ) -> Mesh: ...
 def estimate_normals(points: Union[ArrayLike, PointCloud, Any], normals: Optional[ArrayLike] = None,
                      *, normals_mode: Literal["keep", "orient", "estimate"] = "keep",
-                     orientation: Literal["mst"] = "mst", normal_neighbors: int = 18,
+                     orientation: Literal["spectral", "mst"] = "spectral", normal_neighbors: int = 18,
                      threads: int = 0) -> PointCloud: ...
 def read_points(path: Path) -> PointCloud: ...
 def read_mesh(path: Path) -> Mesh: ...

@@ -6,7 +6,11 @@
 #include <CGAL/mst_orient_normals.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
+#include <utility>
+
+#include "common/nearest_neighbors.h"
 #include <tuple>
 
 namespace pdd {
@@ -55,6 +59,82 @@ void flip_random_normals(std::vector<Vec3>& normals, double fraction, std::uint6
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   for (Vec3& n : normals)
     if (uniform(random) < fraction) n = -n;
+}
+
+}  // namespace pdd
+
+namespace pdd {
+namespace {
+
+// Union-find whose links carry a parity: whether a point's normal must be
+// flipped to agree with its root's.
+struct SignedUnionFind {
+  std::vector<int> parent;
+  std::vector<std::uint8_t> parity;
+  explicit SignedUnionFind(std::size_t n) : parent(n), parity(n, 0) {
+    for (std::size_t i = 0; i < n; ++i) parent[i] = static_cast<int>(i);
+  }
+  std::pair<int, std::uint8_t> find(int i) {
+    std::uint8_t p = 0;
+    int r = i;
+    while (parent[r] != r) {
+      p ^= parity[r];
+      r = parent[r];
+    }
+    // Path compression, keeping each node's parity to the root.
+    std::uint8_t q = p;
+    while (parent[i] != r) {
+      const int next = parent[i];
+      const std::uint8_t own = parity[i];
+      parent[i] = r;
+      parity[i] = q;
+      q ^= own;
+      i = next;
+    }
+    return {r, p};
+  }
+};
+
+}  // namespace
+
+std::vector<int> orient_segments(const std::vector<Vec3>& points, std::vector<Vec3>& normals,
+                                 int neighbors) {
+  const detail::NearestNeighbors knn(points);
+  struct Edge {
+    double alignment;
+    int i, j;
+  };
+  std::vector<Edge> edges;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (const int j : knn.query(points[i], neighbors + 1)) {
+      if (j <= static_cast<int>(i)) continue;
+      const double alignment = std::abs(normals[i].dot(normals[j]));
+      const Vec3 d = (points[j] - points[i]).normalized();
+      // A reliable link: nearly parallel normals, and a step along both
+      // tangent planes, not across a thin part between two sheets.
+      if (alignment < 0.9 || std::abs(d.dot(normals[i])) > 0.2 ||
+          std::abs(d.dot(normals[j])) > 0.2)
+        continue;
+      edges.push_back({alignment, static_cast<int>(i), j});
+    }
+  std::stable_sort(edges.begin(), edges.end(),
+                   [](const Edge& a, const Edge& b) { return a.alignment > b.alignment; });
+  SignedUnionFind sets(points.size());
+  for (const Edge& e : edges) {
+    const auto [ri, pi] = sets.find(e.i);
+    const auto [rj, pj] = sets.find(e.j);
+    if (ri == rj) continue;
+    const std::uint8_t opposite = normals[e.i].dot(normals[e.j]) < 0;
+    sets.parent[rj] = ri;
+    sets.parity[rj] = pi ^ pj ^ opposite;
+  }
+  std::vector<int> segment(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto [root, parity] = sets.find(static_cast<int>(i));
+    segment[i] = root;
+    if (parity) normals[i] = -normals[i];
+  }
+  return segment;
 }
 
 }  // namespace pdd

@@ -10,20 +10,27 @@
 namespace pdd::detail {
 namespace {
 
-// A coarse progressive run with the current normals gives f < 0 inside; each
-// normal is then turned towards increasing f, comparing f a short step on
-// either side of its sample (the re-estimation of iterative Poisson
-// reconstruction, once, at twice the target edge).
-std::size_t orient_along_coarse_run(PointSet& input, const ReconstructOptions& options,
-                                    SolverKind solver, double coarsening = 2) {
+// Design (b) of issue 17. A coarse progressive run of the spectral solver,
+// which ignores the normals' signs (Eq. 16), gives f < 0 inside; each normal
+// is turned towards increasing f, comparing f a short step on either side of
+// its sample. Coarse (4x the target edge, a few seconds), that is right over
+// most of the surface but not across parts thinner than its tets; so it only
+// votes: the segments over which the normals' relative signs are reliable
+// (orient_segments) each take the sign of their majority.
+std::size_t orient_by_spectral_vote(PointSet& input, const ReconstructOptions& options,
+                                    std::size_t& segments) {
+  const std::vector<Vec3> initial = input.normals;
+  const std::vector<int> segment =
+      orient_segments(input.points, input.normals, options.normal_neighbors);
+
   ReconstructOptions coarse = options;
   coarse.normals = NormalsMode::kKeep;
-  coarse.solver.kind = solver;
+  coarse.solver.kind = SolverKind::kSpectral;
   coarse.sizing = SizingKind::kUniform;
   coarse.custom_sizing = nullptr;
   coarse.target_area = 0;
-  const double edge = coarsening * (options.target_edge_length > 0 ? options.target_edge_length
-                                                          : default_target_edge(input));
+  const double edge = 4 * (options.target_edge_length > 0 ? options.target_edge_length
+                                                         : default_target_edge(input));
   coarse.target_edge_length = edge;
   coarse.cleanup = false;
   coarse.min_component_edges = 0;
@@ -38,16 +45,20 @@ std::size_t orient_along_coarse_run(PointSet& input, const ReconstructOptions& o
   if (run.cancelled) throw OrientationCancelled{};
   const Domain& domain = run.domain;
   const double step = 0.25 * edge;
-  std::size_t flipped = 0;
+  std::vector<double> vote(input.size(), 0.0);
   for (std::size_t i = 0; i < input.size(); ++i) {
     const Vec3& p = input.points[i];
-    Vec3& n = input.normals[i];
+    const Vec3& n = input.normals[i];
     const double outside = domain.interpolate(p + step * n, domain.f());
     const double inside = domain.interpolate(p - step * n, domain.f());
-    if (outside < inside) {
-      n = -n;
-      ++flipped;
-    }
+    vote[segment[i]] += outside > inside ? 1 : -1;
+  }
+  segments = 0;
+  std::size_t flipped = 0;
+  for (std::size_t i = 0; i < input.size(); ++i) {
+    segments += segment[i] == static_cast<int>(i);
+    if (vote[segment[i]] < 0) input.normals[i] = -input.normals[i];
+    flipped += input.normals[i].dot(initial[i]) < 0;
   }
   return flipped;
 }
@@ -60,8 +71,9 @@ const PointSet& prepare_normals(const PointSet& points, const ReconstructOptions
   if (!estimate && options.normals == NormalsMode::kKeep) return points;
   const auto start = std::chrono::steady_clock::now();
   storage.points = points.points;
-  storage.normals = estimate ? estimate_normals(points.points, options.normal_neighbors, options.source)
-                             : points.normals;
+  storage.normals = estimate
+                        ? estimate_normals(points.points, options.normal_neighbors, options.source)
+                        : points.normals;
   report.estimated = estimate;
   report.oriented = true;
   report.orientation = options.orientation;
@@ -71,18 +83,8 @@ const PointSet& prepare_normals(const PointSet& points, const ReconstructOptions
                                           options.normal_neighbors, &report.unreached);
       break;
     case Orientation::kSpectral:
-      report.flipped = orient_along_coarse_run(storage, options, SolverKind::kSpectral);
+      report.flipped = orient_by_spectral_vote(storage, options, report.segments);
       break;
-    case Orientation::kMstSolve: {
-      std::vector<Vec3> initial = storage.normals;
-      orient_normals_mst(storage.points, storage.normals, options.normal_neighbors,
-                         &report.unreached);
-      orient_along_coarse_run(storage, options, SolverKind::kSsd);
-      report.flipped = 0;
-      for (std::size_t i = 0; i < initial.size(); ++i)
-        report.flipped += initial[i].dot(storage.normals[i]) < 0;
-      break;
-    }
   }
   report.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -114,10 +114,11 @@ std::vector<OptionSpec> make_specs() {
       [](ReconstructOptions& o) -> NormalsMode& { return o.normals; }, to_string(d.normals)));
   s.push_back(choice<Orientation>(
       "orientation",
-      "How estimated or re-oriented normals get their signs: spectral (along the gradient of "
-      "a coarse run of the spectral solver, which needs no orientation) or mst (propagation "
-      "along a minimum spanning tree of the neighbour graph)",
-      {"spectral", "mst", "mst+solve"}, parse_orientation,
+      "How estimated or re-oriented normals get their signs: spectral (segments of "
+      "consistent normals, each turned by its majority along the gradient of a coarse run of "
+      "the spectral solver, which needs no orientation) or mst (propagation along a minimum "
+      "spanning tree of the neighbour graph, the peers' method)",
+      {"spectral", "mst"}, parse_orientation,
       [](ReconstructOptions& o) -> Orientation& { return o.orientation; },
       to_string(d.orientation)));
   s.push_back(integer("normal-neighbors",

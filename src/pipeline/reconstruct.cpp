@@ -333,15 +333,13 @@ Orientation parse_orientation(const std::string& name) {
   const std::string s = lower(name);
   if (s == "mst") return Orientation::kMst;
   if (s == "spectral") return Orientation::kSpectral;
-  if (s == "mst+solve") return Orientation::kMstSolve;
-  throw InputError("unknown orientation '" + name + "' (mst, spectral, mst+solve)");
+  throw InputError("unknown orientation '" + name + "' (mst, spectral)");
 }
 
 std::string to_string(Orientation orientation) {
   switch (orientation) {
     case Orientation::kMst: return "mst";
     case Orientation::kSpectral: return "spectral";
-    case Orientation::kMstSolve: return "mst+solve";
   }
   return "unknown";
 }

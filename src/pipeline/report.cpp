@@ -35,6 +35,7 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
       << "\", \"neighbors\": " << options.normal_neighbors
       << ", \"flipped\": " << result.normals.flipped
       << ", \"unreached\": " << result.normals.unreached
+      << ", \"segments\": " << result.normals.segments
       << ", \"seconds\": " << number(result.normals.seconds) << "},\n"
       << "  \"memory_budget\": {\"bytes\": " << result.budget.bytes
       << ", \"vertices\": " << result.budget.vertices
@@ -120,10 +121,10 @@ std::string normals_note(const Result& result) {
   if (!n.oriented) return "";
   std::string line = std::string("normals ") + (n.estimated ? "estimated by jet fitting and " : "") +
                      "oriented " +
-                     (n.orientation == Orientation::kMst ? "along a minimum spanning tree"
-                      : n.orientation == Orientation::kSpectral
-                          ? "along the gradient of a coarse spectral run"
-                          : "along a minimum spanning tree, then a coarse SSD run's gradient") +
+                     (n.orientation == Orientation::kMst
+                          ? "along a minimum spanning tree"
+                          : std::to_string(n.segments) +
+                                " segments by a coarse spectral run's gradient") +
                      " (--normals, --orientation): " + std::to_string(n.flipped) + " flipped";
   if (n.unreached > 0) line += ", " + std::to_string(n.unreached) + " not reached by the tree";
   char seconds[32];
