@@ -435,7 +435,41 @@ TEST_F(IoTest, TextLinesThatDoNotParseAreNamed) {
   write_file("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 1\n");
   expect_input_error([&] { read_points(path("a.obj")); }, {"1 normals (vn) for 4 vertices (v)"});
   write_file("a.obj", "v 0 0 0 2\n");
-  expect_input_error([&] { read_points(path("a.obj")); }, {"line 1", "weight w = 2"});
+  expect_input_error([&] { read_points(path("a.obj")); }, {"line 1", "weight w = '2'"});
+}
+
+TEST_F(IoTest, TokensInMessagesAreEscapedAndShortened) {
+  // A NUL, a terminal escape sequence and a long token, quoted as they go
+  // into a message: every byte printable, the line short.
+  const std::string nul("0 0 z\0ero\n", 11);
+  const std::string escape = "0 0 \x1b[31mred\n";
+  const std::string longer = "0 0 " + std::string(1 << 20, '7') + "x\n";
+  for (const auto& [text, shown] :
+       {std::pair(nul, "'z\\x00ero'"), std::pair(escape, "'\\x1b[31mred'"),
+        std::pair(longer, "'7777777777777777777777777777777777777777...'")}) {
+    write_file("a.xyz", text);
+    try {
+      read_points(path("a.xyz"));
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(std::string("line 1: ") + shown + " is not a number"),
+                std::string::npos)
+          << message;
+      EXPECT_LT(message.size(), path("a.xyz").size() + 100) << message;
+      for (const char c : message) EXPECT_TRUE(c >= 0x20 && c < 0x7f) << int(c);
+    }
+  }
+  // Names from a PLY header too.
+  write_file("h.ply", "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\n"
+                      "property float y\nproperty float z\nelement " + std::string(5000, 'n') +
+                          " 5\nproperty float w\nend_header\n");
+  expect_input_error([&] { read_points(path("h.ply")); }, {"5 'nnnnnnnnnn", "...' records"});
+  try {
+    read_points(path("h.ply"));
+  } catch (const InputError& e) {
+    EXPECT_LT(std::string(e.what()).size(), path("h.ply").size() + 200) << e.what();
+  }
 }
 
 TEST_F(IoTest, NonFiniteCoordinatesAreNamed) {

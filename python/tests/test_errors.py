@@ -43,6 +43,7 @@ def test_normals_must_match_the_points(sphere):
     ({"iterations": 2.5}, r"--iterations: must be an integer, got 2.5"),
     ({"no_cleanup": 1}, r"--no-cleanup: must be True or False, got 1"),
     ({"target_edge": float("nan")}, r"--target-edge: must be a number > 0, got 'nan'"),
+    ({"max_memory": "\x1b[2J" + "9" * 1000}, r"--max-memory: '\\x1b\[2J9{36}\.\.\.' is not"),
 ])
 def test_bad_options_name_the_option_and_the_bound(sphere, options, message):
     with pytest.raises(ValueError, match=message):

@@ -91,7 +91,7 @@ Scalar scalar_at(std::string_view name, const std::string& path, std::size_t lin
   for (const ScalarName& s : kScalars) {
     if (name == s.name) return s.type;
   }
-  fail_at_line(path, line, "malformed header: unknown property type '" + std::string(name) + "'");
+  fail_at_line(path, line, "malformed header: unknown property type " + quote(name));
 }
 
 Header parse_header(const std::string& path, const std::string& data) {
@@ -132,8 +132,8 @@ Header parse_header(const std::string& path, const std::string& data) {
         header.encoding = Encoding::kBinaryBigEndian;
       } else {
         fail_at_line(path, line,
-                     "malformed header: unknown format '" + std::string(tokens[1]) +
-                         "' (expected ascii, binary_little_endian or "
+                     "malformed header: unknown format " + quote(tokens[1]) +
+                         " (expected ascii, binary_little_endian or "
                          "binary_big_endian)");
       }
       has_format = true;
@@ -166,7 +166,7 @@ Header parse_header(const std::string& path, const std::string& data) {
       }
       header.elements.back().properties.push_back(property);
     } else {
-      fail_at_line(path, line, "malformed header: unexpected '" + std::string(key) + "'");
+      fail_at_line(path, line, "malformed header: unexpected " + quote(key));
     }
   }
   if (!has_format) fail(path, "malformed header: no 'format' line");
@@ -272,11 +272,11 @@ void read_ascii_body(const std::string& path, const std::string& data, const Hea
     for (std::uint64_t r = 0; r < element.count; ++r) {
       if (!reader.next(tokens)) {
         fail(path, "file is truncated: it ends after " + std::to_string(r) + " of the " +
-                       std::to_string(element.count) + " '" + element.name +
-                       "' records the header declares");
+                       std::to_string(element.count) + " " + quote(element.name) +
+                       " records the header declares");
       }
       const std::size_t line = reader.line();
-      const std::string record = "'" + element.name + "' record " + std::to_string(r + 1);
+      const std::string record = quote(element.name) + " record " + std::to_string(r + 1);
       std::size_t t = 0;
       values.assign(element.properties.size(), 0.0);
       for (std::size_t p = 0; p < element.properties.size(); ++p) {
@@ -378,7 +378,7 @@ void read_binary_body(const std::string& path, const std::string& data, const He
     const bool is_vertex = e == vertex.element;
     const bool is_face = face && e == face->element;
     auto truncated = [&](std::uint64_t record) {
-      fail(path, "file is truncated: it ends inside '" + element.name + "' record " +
+      fail(path, "file is truncated: it ends inside " + quote(element.name) + " record " +
                      std::to_string(record + 1) + " of the " + std::to_string(element.count) +
                      " the header declares");
     };
@@ -409,7 +409,7 @@ void read_binary_body(const std::string& path, const std::string& data, const He
         if (cursor.remaining() < size_of(property.count_type)) truncated(r);
         const double count = cursor.read(property.count_type);
         if (count < 0) {
-          fail(path, "'" + element.name + "' record " + std::to_string(r + 1) +
+          fail(path, quote(element.name) + " record " + std::to_string(r + 1) +
                          " has a negative list length");
         }
         const auto n = static_cast<std::uint64_t>(count);

@@ -45,7 +45,7 @@ Format format_of(const std::string& path, const std::vector<Format>& allowed,
   if (extension.empty()) {
     fail(path, "no file extension; a " + what + " file must end in one of " + expected);
   }
-  fail(path, "unknown extension '" + extension + "' for a " + what + " file; expected one of " +
+  fail(path, "unknown extension " + quote(extension) + " for a " + what + " file; expected one of " +
                  expected);
 }
 
@@ -116,7 +116,7 @@ bool parse_integer(std::string_view token, std::int64_t& value) {
 double double_at(std::string_view token, const std::string& path, std::size_t line) {
   double value;
   if (!parse_double(token, value)) {
-    fail_at_line(path, line, "'" + std::string(token) + "' is not a number");
+    fail_at_line(path, line, quote(token) + " is not a number");
   }
   return value;
 }
@@ -124,7 +124,7 @@ double double_at(std::string_view token, const std::string& path, std::size_t li
 std::int64_t integer_at(std::string_view token, const std::string& path, std::size_t line) {
   std::int64_t value;
   if (!parse_integer(token, value)) {
-    fail_at_line(path, line, "'" + std::string(token) + "' is not an integer");
+    fail_at_line(path, line, quote(token) + " is not an integer");
   }
   return value;
 }

@@ -5,6 +5,8 @@
 
 #include <pdd/errors.h>
 
+#include "common/quote.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <string>

@@ -7,28 +7,12 @@
 #include <cstdlib>
 #include <limits>
 
+#include "common/quote.h"
+
 namespace pdd {
 namespace {
 
 using Kind = OptionSpec::Kind;
-
-// The value as it goes into a message: non-printable bytes escaped, long
-// values shortened, so that an error line stays one readable line.
-std::string quoted(const std::string& value) {
-  std::string out = "'";
-  for (std::size_t i = 0; i < value.size() && i < 40; ++i) {
-    const unsigned char c = static_cast<unsigned char>(value[i]);
-    if (c < 0x20 || c >= 0x7f || c == '\'' || c == '\\') {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\x%02x", c);
-      out += escaped;
-    } else {
-      out += static_cast<char>(c);
-    }
-  }
-  if (value.size() > 40) out += "...";
-  return out + "'";
-}
 
 std::string text(double x) {
   char buffer[32];
@@ -38,7 +22,7 @@ std::string text(double x) {
 
 [[noreturn]] void reject(const std::string& name, const std::string& what,
                          const std::string& value) {
-  throw InputError("--" + name + ": must be " + what + ", got " + quoted(value));
+  throw InputError("--" + name + ": must be " + what + ", got " + quote(value));
 }
 
 using DoubleField = double& (*)(ReconstructOptions&);
@@ -259,7 +243,7 @@ void set_reconstruct_option(ReconstructOptions& options, const std::string& name
     if (c == '_') c = '-';
   for (const OptionSpec& spec : reconstruct_option_specs())
     if (spec.name == dashed) return spec.set(options, value);
-  throw InputError("unknown option " + quoted(name));
+  throw InputError("unknown option " + quote(name));
 }
 
 }  // namespace pdd
