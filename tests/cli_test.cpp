@@ -9,6 +9,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <utility>
+#include <vector>
+
+#include <sys/stat.h>
 
 #include "support/scratch_dir.h"
 #include "support/shapes.h"
@@ -20,13 +24,36 @@ namespace fs = std::filesystem;
 
 using test::Outcome;
 
+std::size_t lines_of(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
 class CliTest : public test::ScratchDirTest {
  protected:
   Outcome pdd(const std::string& args) const { return run(PDD_BINARY, args); }
+  // The same, killed after a generous 30 s: for inputs that once made it hang.
+  Outcome pdd_without_hanging(const std::string& args) const {
+    return run("timeout", "30 '" + std::string(PDD_BINARY) + "' " + args);
+  }
+  std::string quoted_path(const std::string& name) const { return "'" + path(name) + "'"; }
+  // Runs each command (killed after 30 s), expecting exit code 2 and one
+  // error line that holds the case's message.
+  using Cases = std::vector<std::pair<std::string, std::string>>;
+  void expect_refused(const Cases& cases) const {
+    for (const auto& [command, message] : cases) {
+      const Outcome run = pdd_without_hanging(command);
+      EXPECT_EQ(run.code, 2) << command << ": " << run.err;
+      EXPECT_EQ(lines_of(run.err), 1u) << command << ": " << run.err;
+      EXPECT_NE(run.err.find(message), std::string::npos) << command << ": " << run.err;
+    }
+  }
 };
 
-std::size_t lines_of(const std::string& text) {
-  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+TriangleMesh tetrahedron() {
+  TriangleMesh m;
+  m.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  m.faces = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  return m;
 }
 
 TEST_F(CliTest, HelpAndVersionSucceed) {
@@ -184,6 +211,49 @@ TEST_F(CliTest, BadOptionValuesExitTwoLeavingNoFile) {
     }
     EXPECT_EQ(entries(), std::vector<std::string>{"in.ply"}) << option;
   }
+}
+
+// A binary PLY whose header declares more records than its bytes can hold
+// once made every command walk them for ever.
+TEST_F(CliTest, HeaderCountsNoFileHoldsFailAtOnce) {
+  write_mesh(path("mesh.ply"), tetrahedron());
+  write_points(path("points.ply"), test::sample_sphere(100));
+  // The same files with an element of empty records declared before the body.
+  for (const std::string name : {"mesh.ply", "points.ply"}) {
+    std::string text = slurp(path(name));
+    text.insert(text.find("end_header\n"), "element junk 9000000000000000000\n");
+    write_file("junk_" + name, text);
+  }
+  const std::string points = path("junk_points.ply"), mesh = path("junk_mesh.ply");
+  const std::string junk =
+      ": malformed header: element 'junk' declares 9000000000000000000 records but no properties";
+  expect_refused({
+      {"reconstruct '" + points + "' -o " + quoted_path("out.ply"), points + ": line 11" + junk},
+      {"quality '" + mesh + "'", mesh + ": line 10" + junk},
+      {"compare '" + mesh + "' " + quoted_path("mesh.ply"), mesh + ": line 10" + junk},
+      {"compare " + quoted_path("mesh.ply") + " '" + mesh + "'", mesh + ": line 10" + junk},
+  });
+  EXPECT_FALSE(fs::exists(path("out.ply")));
+}
+
+// A named pipe, a folder or a device as input is refused at once; opening a
+// pipe once waited for a writer for ever.
+TEST_F(CliTest, InputsThatAreNotRegularFilesAreRefusedWithoutBlocking) {
+  ASSERT_EQ(::mkfifo(path("pipe.ply").c_str(), 0600), 0);
+  ASSERT_EQ(::mkfifo(path("pipe.xyz").c_str(), 0600), 0);
+  fs::create_directory(path("folder.off"));
+  write_mesh(path("mesh.ply"), tetrahedron());
+  const std::string pipe = "pdd: error: " + path("pipe.ply") + ": not a regular file (a named pipe)";
+  expect_refused({
+      {"reconstruct " + quoted_path("pipe.ply") + " -o " + quoted_path("out.ply"), pipe},
+      {"reconstruct " + quoted_path("pipe.xyz") + " -o " + quoted_path("out.ply"),
+       "pdd: error: " + path("pipe.xyz") + ": not a regular file (a named pipe)"},
+      {"quality " + quoted_path("pipe.ply"), pipe},
+      {"compare " + quoted_path("mesh.ply") + " " + quoted_path("pipe.ply"), pipe},
+      {"quality " + quoted_path("folder.off"),
+       "pdd: error: " + path("folder.off") + ": is a folder, not a file"},
+  });
+  EXPECT_FALSE(fs::exists(path("out.ply")));
 }
 
 }  // namespace

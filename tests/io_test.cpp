@@ -369,7 +369,11 @@ TEST_F(IoTest, TruncatedOrOverlongPlyBodies) {
   for (int i = 0; i < 10; ++i) offset += 1 + 24 + 4 + 2 * (i % 3);
   write_file("t.ply", binary.substr(0, offset + 5));
   expect_input_error([&] { read_points(path("t.ply")); },
-                     {path("t.ply"), "truncated", "'vertex' record 11 of the 60"});
+                     {path("t.ply"), "truncated", "60 'vertex' records of at least 29 bytes"});
+  // Enough bytes for 60 records without their lists, not with them: found while reading.
+  write_file("t.ply", binary.substr(0, binary.size() - 13 - 60));
+  expect_input_error([&] { read_points(path("t.ply")); },
+                     {path("t.ply"), "truncated", "'vertex' record 59 of the 60"});
   write_file("t.ply", binary + "xy");
   expect_input_error([&] { read_points(path("t.ply")); },
                      {"2 bytes of data after the last element"});
@@ -470,6 +474,47 @@ TEST_F(IoTest, TokensInMessagesAreEscapedAndShortened) {
   } catch (const InputError& e) {
     EXPECT_LT(std::string(e.what()).size(), path("h.ply").size() + 200) << e.what();
   }
+}
+
+TEST_F(IoTest, CountsTheFileCannotHoldFailBeforeAnyRecordIsRead) {
+  const std::string vertices =
+      "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n";
+  const std::string body(4 * 12, '\0');
+  // Records without properties take no bytes: any count of them is refused.
+  write_file("j.ply", "ply\nformat binary_little_endian 1.0\n" + vertices +
+                          "element junk 9000000000000000000\nend_header\n" + body);
+  expect_input_error([&] { read_points(path("j.ply")); },
+                     {path("j.ply"), "line 7", "element 'junk' declares 9000000000000000000 "
+                                               "records but no properties"});
+  expect_input_error([&] { read_mesh(path("j.ply")); }, {path("j.ply"), "'junk'"});
+  // Records of a byte or more: the count against the bytes after the header.
+  write_file("k.ply", "ply\nformat binary_big_endian 1.0\n" + vertices +
+                          "element junk 9000000000000000000\nproperty list uchar int stuff\n"
+                          "end_header\n" + body + "\x01\x02");
+  expect_input_error([&] { read_points(path("k.ply")); },
+                     {path("k.ply"), "line 7", "9000000000000000000 'junk' records of at least 1 "
+                                               "byte each, but only 2 bytes are left"});
+  write_file("v.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 5\nproperty float x\n"
+                          "property float y\nproperty float z\nend_header\n" + body);
+  expect_input_error([&] { read_points(path("v.ply")); },
+                     {"line 3", "5 'vertex' records of at least 12 bytes each, but only 48"});
+  // ASCII: a record is a line of at least one byte.
+  write_file("a.ply", "ply\nformat ascii 1.0\nelement vertex 9000000000000000000\n"
+                      "property float x\nproperty float y\nproperty float z\nend_header\n"
+                      "0 0 0\n1 0 0\n");
+  expect_input_error([&] { read_points(path("a.ply")); },
+                     {"line 3", "9000000000000000000 'vertex' records of at least 1 byte (a line)"});
+  write_file("f.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                      "property float y\nproperty float z\nelement face 4611686018427387904\n"
+                      "property list uchar int vertex_indices\nend_header\n"
+                      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  expect_input_error([&] { read_mesh(path("f.ply")); }, {"line 7", "'face' records"});
+  // OFF: one line per vertex and per face.
+  write_file("a.off", "OFF\n9000000000000000000 1 0\n0 0 0\n");
+  expect_input_error([&] { read_points(path("a.off")); },
+                     {path("a.off"), "line 2", "declares 9000000000000000000 vertices and 1 faces"});
+  write_file("b.off", "OFF\n3 9000000000000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  expect_input_error([&] { read_mesh(path("b.off")); }, {"line 2", "9000000000000000000 faces"});
 }
 
 TEST_F(IoTest, NonFiniteCoordinatesAreNamed) {
