@@ -256,5 +256,64 @@ TEST_F(CliTest, InputsThatAreNotRegularFilesAreRefusedWithoutBlocking) {
   EXPECT_FALSE(fs::exists(path("out.ply")));
 }
 
+TEST_F(CliTest, NoOutputReplacesTheInput) {
+  write_points(path("in.ply"), test::sample_sphere(100));
+  const std::string before = slurp(path("in.ply"));
+  fs::create_directory(path("sub"));
+  fs::create_symlink(path("in.ply"), path("soft.ply"));
+  fs::create_hard_link(path("in.ply"), path("hard.ply"));
+  fs::create_symlink(path("in.ply"), path("stats.json"));
+  fs::create_symlink(path("in.ply"), path("domain.vtu"));
+  const std::string run_on = "reconstruct " + quoted_path("in.ply") + " -o ";
+  const std::string is_input =
+      ": cannot write: it is the input file " + path("in.ply") + "; pdd does not overwrite it\n";
+  Cases cases;
+  for (const char* alias : {"in.ply", "./in.ply", "sub/../in.ply", "soft.ply", "hard.ply"})
+    cases.emplace_back(run_on + quoted_path(alias), "pdd: error: " + path(alias) + is_input);
+  cases.emplace_back(run_on + quoted_path("out.ply") + " --stats " + quoted_path("stats.json"),
+                     path("stats.json") + is_input);
+  cases.emplace_back(run_on + quoted_path("out.ply") + " --domain-out " + quoted_path("domain.vtu"),
+                     path("domain.vtu") + is_input);
+  expect_refused(cases);
+  EXPECT_EQ(slurp(path("in.ply")), before);
+  EXPECT_FALSE(fs::exists(path("out.ply")));
+}
+
+TEST_F(CliTest, EveryOutputIsCheckedBeforeTheRun) {
+  // The input does not exist: each output's problem is reported first.
+  const std::string run_on = "reconstruct " + quoted_path("absent.ply") + " -o ";
+  write_file("file", "x");
+  const std::string long_name = std::string(300, 'n');
+  expect_refused({
+      {run_on + quoted_path(long_name + ".ply"),
+       "a name in it is 304 bytes long, more than the 255"},
+      {run_on + quoted_path("out.ply") + " --stats " + quoted_path(long_name + ".json"),
+       "a name in it is 305 bytes long"},
+      {run_on + quoted_path("out.ply") + " --domain-out " + quoted_path("file/d.vtu"),
+       path("file") + "' is not a folder"},
+      {run_on + quoted_path("out.ply") + " --save-iterations " + quoted_path("file"),
+       path("file") + ": cannot write: it is a regular file, not a folder"},
+      {run_on + quoted_path("out.ply") + " --save-iterations " + quoted_path("file/steps"),
+       path("file/steps") + ": cannot write: cannot reach it: Not a directory"},
+  });
+  EXPECT_EQ(entries(), std::vector<std::string>{"file"});
+}
+
+// A folder where no file can be created although its permissions say so (as
+// root, or under /proc): found before the run, nothing written.
+TEST_F(CliTest, AnOutputThatCannotBeCreatedFailsBeforeTheRun) {
+  write_points(path("in.ply"), test::sample_sphere(300));
+  const Outcome run = pdd("reconstruct " + quoted_path("in.ply") + " -o " +
+                          quoted_path("out.ply") + " --domain-out " + quoted_path("d.vtu") +
+                          " --stats /proc/pdd_stats.json");
+  EXPECT_EQ(run.code, 2) << run.err;
+  EXPECT_EQ(run.err.find("iteration"), std::string::npos) << "the run started: " << run.err;
+  EXPECT_EQ(lines_of(run.err), 1u) << run.err;
+  EXPECT_NE(run.err.find("/proc/pdd_stats.json: cannot write: the folder '/proc' is not writable"),
+            std::string::npos)
+      << run.err;
+  EXPECT_EQ(entries(), std::vector<std::string>{"in.ply"});
+}
+
 }  // namespace
 }  // namespace pdd

@@ -14,6 +14,8 @@
 #include <random>
 #include <sstream>
 
+#include <sys/stat.h>
+
 #include "support/scratch_dir.h"
 #include "support/shapes.h"
 
@@ -714,6 +716,99 @@ TEST_F(IoTest, CheckOutputPath) {
   expect_input_error([&] { check_output_path(path("no/m.ply"), OutputKind::kMesh); },
                      {path("no/m.ply"), "does not exist"});
   EXPECT_TRUE(entries().empty());
+}
+
+TEST_F(IoTest, CheckOutputPathRefusesLongNamesSpecialFilesAndTheInput) {
+  const std::string long_name = path(std::string(300, 'm') + ".ply");
+  expect_input_error([&] { check_output_path(long_name, OutputKind::kMesh); },
+                     {long_name, "a name in it is 304 bytes long, more than the 255"});
+  std::string deep = path("");
+  while (deep.size() < 5000) deep += std::string(200, 'd') + "/";
+  expect_input_error([&] { check_output_path(deep + "m.ply", OutputKind::kMesh); },
+                     {"the path is", "bytes long, more than the 4095"});
+  ASSERT_EQ(::mkfifo(path("pipe.ply").c_str(), 0600), 0);
+  expect_input_error([&] { check_output_path(path("pipe.ply"), OutputKind::kMesh); },
+                     {path("pipe.ply"), "it is a named pipe, not a regular file"});
+
+  // The input under another spelling, through a symbolic or a hard link.
+  write_points(path("in.ply"), sphere());
+  fs::create_directory(path("sub"));
+  fs::create_symlink(path("in.ply"), path("soft.ply"));
+  fs::create_hard_link(path("in.ply"), path("hard.ply"));
+  fs::create_symlink(path("in.ply"), path("stats.json"));
+  for (const std::string& alias :
+       {path("in.ply"), path("sub/../in.ply"), path("./in.ply"), path("soft.ply"), path("hard.ply")})
+    expect_input_error([&] { check_output_path(alias, OutputKind::kMesh, {path("in.ply")}); },
+                       {alias + ": cannot write: it is the input file " + path("in.ply")});
+  expect_input_error(
+      [&] { check_output_path(path("stats.json"), OutputKind::kStatistics, {path("in.ply")}); },
+      {"it is the input file"});
+  EXPECT_NO_THROW(check_output_path(path("out.ply"), OutputKind::kMesh, {path("in.ply")}));
+  EXPECT_NO_THROW(check_output_path(path("in.ply"), OutputKind::kMesh, {path("other.ply")}));
+
+  // A folder of outputs: created if missing, so its nearest existing ancestor counts.
+  EXPECT_NO_THROW(check_output_path(path("new/deeper"), OutputKind::kFolder));
+  EXPECT_NO_THROW(check_output_path(path("sub"), OutputKind::kFolder));
+  expect_input_error([&] { check_output_path(path("in.ply"), OutputKind::kFolder); },
+                     {path("in.ply"), "it is a regular file, not a folder"});
+  expect_input_error([&] { check_output_path(path("in.ply/x"), OutputKind::kFolder); },
+                     {path("in.ply/x"), "Not a directory"});
+  expect_input_error(
+      [&] { check_output_path(path(std::string(300, 'f')), OutputKind::kFolder); },
+      {"a name in it is 300 bytes long"});
+  EXPECT_FALSE(fs::exists(path("new")));
+}
+
+TEST_F(IoTest, StagedOutputsAreRenamedTogetherOrNotAtAll) {
+  write_file("old.json", "old");
+  const auto text = [](const char* s) { return [s](std::ostream& out) { out << s; }; };
+  {
+    // A failed write: the outputs staged before it go too, the targets stay as they were.
+    StagedOutputs outputs;
+    outputs.add(path("a.txt"), text("a"));
+    EXPECT_THROW(outputs.add(path("old.json"),
+                             [](std::ostream& out) {
+                               out << "half";
+                               throw std::runtime_error("stop");
+                             }),
+                 std::runtime_error);
+  }
+  EXPECT_EQ(entries(), std::vector<std::string>{"old.json"});
+  EXPECT_EQ(slurp(path("old.json")), "old");
+  {
+    // Nothing is visible before commit(), everything after.
+    StagedOutputs outputs;
+    outputs.add(path("a.txt"), text("a"));
+    outputs.add(path("old.json"), text("new"));
+    EXPECT_EQ(slurp(path("old.json")), "old");
+    EXPECT_FALSE(fs::exists(path("a.txt")));
+    outputs.commit();
+  }
+  EXPECT_EQ(slurp(path("a.txt")), "a");
+  EXPECT_EQ(slurp(path("old.json")), "new");
+  EXPECT_EQ(entries(), (std::vector<std::string>{"a.txt", "old.json"}));
+  {
+    // A rename that fails at commit() (the target became a folder): none is left.
+    StagedOutputs outputs;
+    outputs.add(path("b.txt"), text("b"));
+    outputs.add(path("c.txt"), text("c"));
+    outputs.add(path("d.txt"), text("d"));
+    fs::create_directory(path("c.txt"));
+    write_file("c.txt/keep", "x");
+    EXPECT_THROW(outputs.commit(), std::runtime_error);
+  }
+  EXPECT_EQ(entries(), (std::vector<std::string>{"a.txt", "c.txt", "old.json"}));
+  // Writers stage when asked.
+  {
+    StagedOutputs outputs;
+    write_mesh(path("m.ply"), awkward_tetrahedron(), {false, &outputs});
+    write_domain_vtu(path("d.vtu"), {{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)},
+                                     {{0, 1, 2, 3}}},
+                     {0, 1, 2, 3}, {}, {}, &outputs);
+    EXPECT_FALSE(fs::exists(path("m.ply")));
+    EXPECT_FALSE(fs::exists(path("d.vtu")));
+  }
+  EXPECT_EQ(entries(), (std::vector<std::string>{"a.txt", "c.txt", "old.json"}));
 }
 
 // ------------------------------------------------------------ domain output
