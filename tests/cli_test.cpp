@@ -315,5 +315,21 @@ TEST_F(CliTest, AnOutputThatCannotBeCreatedFailsBeforeTheRun) {
   EXPECT_EQ(entries(), std::vector<std::string>{"in.ply"});
 }
 
+// The kitten scan in UTM-like coordinates reconstructs as it does at the origin.
+TEST_F(CliTest, GeoreferencedCoordinatesAreAccepted) {
+  PointSet kitten = read_points(std::string(PDD_SOURCE_DIR) + "/data/kitten_scan.ply");
+  for (Vec3& p : kitten.points) p += Vec3(5e5, 5e6, 0);
+  write_points(path("utm.ply"), kitten);
+  const Outcome run = pdd("reconstruct " + quoted_path("utm.ply") + " -o " +
+                          quoted_path("out.ply") + " --quiet --target-edge 0.1");
+  ASSERT_EQ(run.code, 0) << run.err;
+  const TriangleMesh mesh = read_mesh(path("out.ply"));
+  EXPECT_GT(mesh.faces.size(), 100u);
+  for (const Vec3& v : mesh.vertices) {
+    EXPECT_NEAR(v.x(), 5e5, 2);
+    EXPECT_NEAR(v.y(), 5e6, 2);
+  }
+}
+
 }  // namespace
 }  // namespace pdd

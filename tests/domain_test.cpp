@@ -74,6 +74,24 @@ TEST(InitialDomain, RejectsBadOptions) {
   EXPECT_THROW(Domain::initial(PointSet{}), InputError);
 }
 
+TEST(Domain, TranslateMovesVerticesAndCentreKeepingTetsAndF) {
+  Domain d = Domain::initial(test::sample_sphere(200));
+  std::vector<double> f(d.num_vertices());
+  for (std::size_t i = 0; i < f.size(); ++i) f[i] = d.vertices()[i].x();
+  d.set_f(f);
+  const Domain before = d;
+  const Vec3 offset(5e5, -5e6, 3);
+  d.translate(offset);
+  EXPECT_EQ(d.tets(), before.tets());
+  EXPECT_EQ(d.f(), f);
+  EXPECT_EQ(d.center(), before.center() + offset);
+  for (std::size_t i = 0; i < d.num_vertices(); ++i)
+    EXPECT_EQ(d.vertices()[i], before.vertices()[i] + offset);
+  // Located and interpolated where it now is.
+  const Vec3 p = before.vertices()[7] * 0.5;
+  EXPECT_NEAR(d.interpolate(p + offset, f), before.interpolate(p, f), 1e-6);
+}
+
 TEST(Domain, TetsArePositivelyOrientedAndNeighborsAreSymmetric) {
   const Domain d(random_points_in_ball(400, 1.0, 3));
   ASSERT_GT(d.num_tets(), 0u);

@@ -581,6 +581,46 @@ TEST_F(IoTest, CoplanarOrCollinearPoints) {
   EXPECT_EQ(validate_points(plane, "lifted").size(), 200u);
 }
 
+TEST_F(IoTest, FarFromTheOriginIsJudgedOnTheOwnExtent) {
+  // The kitten scan in UTM-like coordinates: valid as it is at the origin.
+  const PointSet kitten = read_points(std::string(PDD_SOURCE_DIR) + "/data/kitten_scan.ply");
+  PointSet shifted = kitten;
+  for (Vec3& p : shifted.points) p += Vec3(5e6, 5e6, 0);
+  EXPECT_EQ(validate_points(shifted, "shifted").size(), kitten.size());
+  for (Vec3& p : shifted.points) p += Vec3(1e9, -3e9, 1e8);
+  EXPECT_EQ(validate_points(shifted, "far").size(), kitten.size());
+  // A tilted plane far away is still a plane.
+  PointSet plane;
+  for (int i = 0; i < 50; ++i)
+    plane.points.push_back(Vec3(5e6, 5e6, 100) + Vec3(i % 7, i / 7, 0.5 * (i % 7) + 0.25 * (i / 7)));
+  expect_input_error([&] { validate_points(plane, "p"); }, {"p: all 50 points lie in one plane"});
+}
+
+TEST_F(IoTest, ExtentsOutOfRangeAndOutliersAreNamed) {
+  const PointSet huge = test::sample_sphere(200, 1e300);
+  expect_input_error([&] { validate_points(huge, "huge"); },
+                     {"huge: all 200 points span 3.45e+300", "more than the 1e+50"});
+  const PointSet tiny = test::sample_sphere(200, 1e-60);
+  expect_input_error([&] { validate_points(tiny, "tiny"); },
+                     {"tiny: all 200 points span only", "less than the 1e-50"});
+  // One point far away makes the rest look like a line: it is named instead.
+  PointSet outlier = test::sample_sphere(200);
+  outlier.points.push_back(Vec3(1e15, 0, 0));
+  outlier.normals.push_back(Vec3(1, 0, 0));
+  write_points(path("o.xyz"), outlier);
+  expect_input_error([&] { read_points(path("o.xyz")); },
+                     {path("o.xyz") + ": line 201 (point 201) at (1e+15, 0, 0) is an "
+                                      "outlier: the other 200 points span 3.45, all 201 span 1e+15"});
+  outlier.points.push_back(Vec3(0, -1e14, 0));
+  outlier.normals.push_back(Vec3(1, 0, 0));
+  expect_input_error([&] { validate_points(outlier, "two"); },
+                     {"two: 2 points are outliers, the farthest point 201", "remove them"});
+  // So is one whose distance overflows the extent.
+  outlier.points.back() = Vec3(0, 0, -1.7e308);
+  expect_input_error([&] { validate_points(outlier, "inf"); },
+                     {"inf: 2 points are outliers, the farthest point 202 at (0, 0, -1.7e+308)"});
+}
+
 TEST_F(IoTest, NormalsRequiredButAbsent) {
   const PointSet p = without_normals(sphere());
   write_points(path("p.xyz"), p);

@@ -111,6 +111,11 @@ class Domain {
   // triangulation and carries f over by barycentric interpolation in the old
   // one (§3.3, "Linear Solver"). Vertices keep their indices.
   void move_vertices(const std::vector<Vec3>& new_positions);
+  // Moves every vertex and center() by `offset`, keeping the tets and f: a
+  // translation keeps a Delaunay triangulation Delaunay, up to the rounding of
+  // the new coordinates. For a domain built in coordinates relative to some
+  // centre and handed back in the caller's (pdd::reconstruct).
+  void translate(const Vec3& offset);
   // The same on a new domain, this one unchanged (no copy of it is made).
   Domain moved(const std::vector<Vec3>& new_positions) const;
   // The same with f at the new positions given (one value per vertex) by a

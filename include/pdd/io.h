@@ -26,14 +26,26 @@ namespace pdd {
 
 // Checks applied to every point set read from a file (and available for point
 // sets built in memory through validate_points).
+// Every test is on the points' own extent, wherever they are: a scan in
+// georeferenced coordinates (millions of units from the origin) passes as it
+// would at the origin.
 struct ValidationOptions {
   std::size_t min_points = 4;  // fewer distinct points cannot enclose a volume
   // A point set whose thickness (extent along its thinnest direction) is at
-  // most flatness_tolerance * (bounding-box diagonal) is rejected as coplanar;
-  // one whose bounding-box diagonal is at most flatness_tolerance * (largest
-  // absolute coordinate) is rejected as coincident. 1e-6 is well above the
-  // rounding of float32 files, so a plane stored as floats is caught.
+  // most flatness_tolerance * (bounding-box diagonal) is rejected as coplanar.
+  // 1e-6 is well above the rounding of float32 files, so a plane stored as
+  // floats is caught.
   double flatness_tolerance = 1e-6;
+  // One whose bounding-box diagonal is at most coincidence_tolerance * (its
+  // largest absolute coordinate) is rejected as coincident: its points differ
+  // by little more than the rounding of their coordinates, and so would the
+  // output's vertices.
+  double coincidence_tolerance = 1e-12;
+  // The bounding-box diagonals the reconstruction computes with: beyond
+  // them, powers of lengths (tet volumes, squared areas) overflow or
+  // underflow a double.
+  double min_extent = 1e-50;
+  double max_extent = 1e50;
 };
 
 // What validation changed, for the caller to show the user.
@@ -72,8 +84,10 @@ PointSet read_points(const std::string& path, ValidationReport* report = nullptr
 // occurrence and its normal are kept; the report says how many were merged).
 // Throws InputError, with a message starting with `source`, when a coordinate
 // is NaN or infinite, a normal has zero length (or is not finite), there are
-// fewer than options.min_points distinct points, or all points coincide or lie
-// in one plane (see ValidationOptions). Points are numbered from 1 in messages.
+// fewer than options.min_points distinct points, or all points coincide, lie
+// in one plane or span an extent out of range (see ValidationOptions); when a
+// few far points (outliers) cause the last two, the message names them.
+// Points are numbered from 1 in messages.
 // Normals are kept as given (not normalized).
 PointSet validate_points(PointSet points, const std::string& source,
                          ValidationReport* report = nullptr, const ValidationOptions& options = {});
