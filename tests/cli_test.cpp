@@ -315,6 +315,33 @@ TEST_F(CliTest, AnOutputThatCannotBeCreatedFailsBeforeTheRun) {
   EXPECT_EQ(entries(), std::vector<std::string>{"in.ply"});
 }
 
+// Measures that would come out as NaN or infinite fail instead, naming the file.
+TEST_F(CliTest, ReportsNeverShowNanOrOverflow) {
+  write_mesh(path("t.ply"), tetrahedron());
+  TriangleMesh far = tetrahedron();
+  far.vertices[3] = Vec3(0, 0, -1e308);
+  write_mesh(path("far.ply"), far);
+  TriangleMesh scaled = tetrahedron();
+  for (Vec3& v : scaled.vertices) v *= 1e200;
+  write_mesh(path("scaled.off"), scaled);
+  const Cases cases = {
+      {"compare " + quoted_path("far.ply") + " " + quoted_path("t.ply"),
+       path("far.ply") + ": the vertices span 1e+308 (bounding-box diagonal), more than the 1e+150"},
+      {"compare --json " + quoted_path("t.ply") + " " + quoted_path("far.ply"),
+       path("far.ply") + ": the vertices span"},
+      {"quality " + quoted_path("scaled.off"),
+       path("scaled.off") + ": the vertices span 1.73e+200"},
+      {"quality --json " + quoted_path("scaled.off"), path("scaled.off")},
+      {"compare --samples 1099511627776 " + quoted_path("t.ply") + " " + quoted_path("t.ply"),
+       "--samples: Value 1099511627776 not in range 1 to 100000000"},
+  };
+  expect_refused(cases);
+  for (const auto& [command, message] : cases) EXPECT_EQ(pdd(command).out, "") << command;
+  const Outcome fine = pdd("quality --json " + quoted_path("t.ply"));
+  EXPECT_EQ(fine.code, 0) << fine.err;
+  EXPECT_EQ(fine.out.find("null"), std::string::npos) << fine.out;
+}
+
 // The kitten scan in UTM-like coordinates reconstructs as it does at the origin.
 TEST_F(CliTest, GeoreferencedCoordinatesAreAccepted) {
   PointSet kitten = read_points(std::string(PDD_SOURCE_DIR) + "/data/kitten_scan.ply");
