@@ -213,6 +213,27 @@ TEST_F(CliTest, BadOptionValuesExitTwoLeavingNoFile) {
   }
 }
 
+TEST_F(CliTest, OptionsOutOfReachStateTheirBound) {
+  write_points(path("in.ply"), test::sample_sphere(100));
+  const std::string run_on =
+      "reconstruct " + quoted_path("in.ply") + " -o " + quoted_path("out.ply") + " --quiet ";
+  expect_refused({
+      {run_on + "--enlarge-ratio 1e300",
+       "--enlarge-ratio: must be a number > 1 and <= 100, got '1e300'"},
+      {run_on + "--radius-edge 0.3", "--radius-edge: must be a number >= 1, got '0.3'"},
+      {run_on + "--threads 1024", "--threads: must be an integer from 0 to "},
+      {run_on + "--sphere-points 4",
+       "initial domain: the hull of 4 points on the domain sphere (--sphere-points) reaches"},
+      {run_on + "--sphere-points 8 --enlarge-ratio 1.2", "use more points or a ratio above"},
+  });
+  EXPECT_EQ(entries(), std::vector<std::string>{"in.ply"});
+  // The bounds themselves are reachable: 4 sphere points enclose the input at a ratio of 5.
+  const Outcome bounds =
+      pdd("reconstruct " + quoted_path("in.ply") + " -o " + quoted_path("out.ply") +
+          " --quiet --target-edge 0.4 --sphere-points 4 --enlarge-ratio 5 --radius-edge 1");
+  EXPECT_EQ(bounds.code, 0) << bounds.err;
+}
+
 // A binary PLY whose header declares more records than its bytes can hold
 // once made every command walk them for ever.
 TEST_F(CliTest, HeaderCountsNoFileHoldsFailAtOnce) {

@@ -71,7 +71,37 @@ TEST(InitialDomain, RejectsBadOptions) {
   DomainOptions options;
   options.enlarge_ratio = 0.9;
   EXPECT_THROW(Domain::initial(input, options), InputError);
+  options.enlarge_ratio = 101;
+  EXPECT_THROW(Domain::initial(input, options), InputError);
+  options = DomainOptions();
+  options.radius_edge_bound = 0.9;
+  EXPECT_THROW(Domain::initial(input, options), InputError);
   EXPECT_THROW(Domain::initial(PointSet{}), InputError);
+}
+
+// The domain is the hull of the sphere's points: too few of them, or too
+// small a sphere, leave part of the input's bounding sphere outside it.
+TEST(InitialDomain, TheHullOfTheSpherePointsMustHoldTheInput) {
+  const PointSet input = test::sample_sphere(300);
+  DomainOptions options;
+  options.sphere_points = 4;
+  try {
+    Domain::initial(input, options);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the hull of 4 points on the domain sphere "
+                                         "(--sphere-points) reaches 0.227 of its radius"),
+              std::string::npos)
+        << e.what();
+  }
+  options.enlarge_ratio = 4.5;
+  const Domain d = Domain::initial(input, options);
+  for (const Vec3& p : input.points) EXPECT_GE(d.locate(p).tet, 0);
+  options = DomainOptions();
+  options.enlarge_ratio = 1.01;
+  EXPECT_THROW(Domain::initial(input, options), InputError);
+  options.sphere_points = 2000;
+  EXPECT_NO_THROW(Domain::initial(input, options));
 }
 
 TEST(Domain, TranslateMovesVerticesAndCentreKeepingTetsAndF) {

@@ -152,6 +152,11 @@ struct Result {
 // over a cube 5 % larger than the bounding box's largest side.
 int default_octree_depth(const PointSet& points);
 
+// The most worker threads a run may ask for (ReconstructOptions::threads):
+// 4 times the hardware threads. More only slow a run down, and past a few
+// hundred the thread libraries fail to create them.
+int max_threads();
+
 // Reconstructs a closed surface from `points`. The run works in coordinates
 // relative to the points' bounding-box centre and returns the mesh and the
 // domain in the points' own, so that translated points give the same output,

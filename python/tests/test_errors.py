@@ -43,7 +43,12 @@ def test_normals_must_match_the_points(sphere):
     ({"iterations": 2.5}, r"--iterations: must be an integer, got 2.5"),
     ({"no_cleanup": 1}, r"--no-cleanup: must be True or False, got 1"),
     ({"target_edge": float("nan")}, r"--target-edge: must be a number > 0, got 'nan'"),
-    ({"max_memory": "\x1b[2J" + "9" * 1000}, r"--max-memory: '\\x1b\[2J9{36}\.\.\.' is not"),
+    ({"enlarge_ratio": 1e300}, r"--enlarge-ratio: must be a number > 1 and <= 100, got '1e\+300'"),
+    ({"radius_edge": 0.3}, r"--radius-edge: must be a number >= 1, got '0.3'"),
+    ({"threads": 100000}, r"--threads: must be an integer from 0 to \d+, got '100000'"),
+    ({"sphere_points": 4}, r"initial domain: the hull of 4 points on the domain sphere "
+                           r"\(--sphere-points\) reaches 0.227 of its radius.*"
+                           r"use more points or a ratio above 4.41"),
     ({"max_memory": "\x1b[2J" + "9" * 1000}, r"--max-memory: '\\x1b\[2J9{36}\.\.\.' is not"),
 ])
 def test_bad_options_name_the_option_and_the_bound(sphere, options, message):

@@ -185,22 +185,23 @@ std::vector<OptionSpec> make_specs() {
       "degrees",
       [](ReconstructOptions& o) -> double& { return o.cleanup_options.max_dihedral_degrees; },
       0, true, 89.9));
-  s.push_back(integer("threads", "Worker threads (0: all cores)",
-                      [](ReconstructOptions& o) -> int& { return o.threads; }, 0, 1024));
+  s.push_back(integer("threads",
+                      "Worker threads (0: all cores; at most 4 times the hardware threads)",
+                      [](ReconstructOptions& o) -> int& { return o.threads; }, 0, max_threads()));
   s.push_back(number(
       "enlarge-ratio",
       "Radius of the initial domain sphere over that of the points' bounding sphere (§3.2)",
       [](ReconstructOptions& o) -> double& { return o.domain.enlarge_ratio; }, 1, false,
-      HUGE_VAL));
+      DomainOptions::kMaxEnlargeRatio));
   s.push_back(integer("sphere-points", "Points spread on the initial domain sphere (§3.2)",
                       [](ReconstructOptions& o) -> int& { return o.domain.sphere_points; }, 4,
                       1000000));
   s.push_back(number(
       "radius-edge",
       "Bound on the circumradius-to-shortest-edge ratio of the initial Delaunay refinement "
-      "(§3.2)",
-      [](ReconstructOptions& o) -> double& { return o.domain.radius_edge_bound; }, 0, false,
-      HUGE_VAL));
+      "(§3.2); at least 1, below which the refinement does not end",
+      [](ReconstructOptions& o) -> double& { return o.domain.radius_edge_bound; },
+      DomainOptions::kMinRadiusEdgeBound, true, HUGE_VAL));
   s.push_back(number("lambda-asap",
                      "Weight λa of the as-similar-as-possible term (§3.3, Eq. 1)",
                      [](ReconstructOptions& o) -> double& { return o.optimizer.lambda_asap; },

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <optional>
 #include <random>
+#include <thread>
 
 namespace pdd {
 
@@ -363,6 +364,10 @@ SizingKind parse_sizing_kind(const std::string& name) {
   throw InputError("unknown sizing '" + name + "' (uniform, adaptive)");
 }
 
+int max_threads() {
+  return 4 * static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
 Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
   if (options.max_iterations < 1)
     throw InputError("reconstruct: at least one iteration is needed, got " +
@@ -371,8 +376,9 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
     throw InputError("reconstruct: optimizer rounds must be >= 0, got " +
                      std::to_string(options.optimizer_rounds) + " and " +
                      std::to_string(options.optimizer_rounds_before_refining));
-  if (options.threads < 0)
-    throw InputError("reconstruct: threads must be >= 0, got " + std::to_string(options.threads));
+  if (options.threads < 0 || options.threads > max_threads())
+    throw InputError("reconstruct: threads must be from 0 to " + std::to_string(max_threads()) +
+                     ", got " + std::to_string(options.threads));
   if (!(options.min_component_edges >= 0) || !std::isfinite(options.min_component_edges))
     throw InputError("reconstruct: the smallest component size must be >= 0 edge lengths, got " +
                      std::to_string(options.min_component_edges));
