@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <new>
+#include <stdexcept>
 #include <sstream>
 #include <string>
 
@@ -43,8 +45,9 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("B", args->b, "Reference mesh (relative values use its bounding-box diagonal)")
       ->required();
   cmd->add_flag("--json", args->json, "Print a JSON object instead of text");
-  cmd->add_option("--samples", args->options.samples, "Samples on each surface")
-      ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 40))
+  cmd->add_option("--samples", args->options.samples,
+                  "Samples on each surface (about 70 bytes each while it runs)")
+      ->check(CLI::Range(std::size_t{1}, CompareOptions::kMaxSamples))
       ->capture_default_str();
   cmd->add_option("--fscore-threshold", args->options.fscore_threshold,
                   "F-score threshold τ, as a fraction of B's bounding-box diagonal")
@@ -54,7 +57,15 @@ void add_compare_command(CLI::App& app) {
   cmd->callback([args] {
     const TriangleMesh a = read_surface(args->a);
     const TriangleMesh b = read_surface(args->b);
-    const SurfaceDistance d = compare_surfaces(a, b, args->options);
+    SurfaceDistance d;
+    try {
+      d = compare_surfaces(a, b, args->options);
+    } catch (const std::bad_alloc&) {
+      throw std::runtime_error("compare: not enough memory for " +
+                               std::to_string(args->options.samples) +
+                               " samples on each surface (about 70 bytes each); use fewer "
+                               "(--samples)");
+    }
     std::cout << comparison_report(args->a, args->b, args->options, d, args->json);
   });
 }

@@ -41,7 +41,7 @@ void add_normals_command(CLI::App& app) {
     ReconstructOptions options;
     apply_table_options(*args->values, options);
     options.source = args->input;
-    check_output_path(args->output, OutputKind::kPoints);
+    check_output_path(args->output, OutputKind::kPoints, {args->input});
     ValidationReport report;
     const PointSet points = read_points(args->input, &report);
     for (const std::string& warning : report.warnings)

@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "commands.h"
 #include "table_options.h"
@@ -58,10 +59,14 @@ ProgressCallback progress_printer() {
 
 void reconstruct(ReconstructArgs& args) {
   apply_table_options(*args.values, args.options);
-  // Output paths first, so that a typo costs nothing.
-  check_output_path(args.output, OutputKind::kMesh);
-  if (!args.domain_output.empty()) check_output_path(args.domain_output, OutputKind::kDomain);
-  if (!args.stats_output.empty()) check_output_path(args.stats_output, OutputKind::kStatistics);
+  // Output paths first, so that a typo costs nothing and no output replaces the input.
+  const std::vector<std::string> inputs = {args.input};
+  check_output_path(args.output, OutputKind::kMesh, inputs);
+  if (!args.domain_output.empty())
+    check_output_path(args.domain_output, OutputKind::kDomain, inputs);
+  if (!args.stats_output.empty())
+    check_output_path(args.stats_output, OutputKind::kStatistics, inputs);
+  if (!args.iterations_dir.empty()) check_output_path(args.iterations_dir, OutputKind::kFolder);
 
   ValidationReport report;
   const PointSet points = read_points(args.input, &report);
@@ -81,13 +86,17 @@ void reconstruct(ReconstructArgs& args) {
     throw std::runtime_error("reconstruct: " + args.input +
                              ": the isosurface is empty (the solver found no surface)");
 
-  write_mesh(args.output, result.mesh, {args.ascii});
+  // All outputs or none: each is written to a temporary, then all are renamed.
+  StagedOutputs outputs;
+  write_mesh(args.output, result.mesh, {args.ascii, &outputs});
   if (!args.domain_output.empty())
-    write_domain_vtu(args.domain_output, result.domain.mesh(), result.domain.f());
+    write_domain_vtu(args.domain_output, result.domain.mesh(), result.domain.f(), {}, {},
+                     &outputs);
   if (!args.stats_output.empty()) {
     const std::string json = statistics_json(result, args.options);
-    write_atomically(args.stats_output, [&](std::ostream& out) { out << json; });
+    outputs.add(args.stats_output, [&](std::ostream& out) { out << json; });
   }
+  outputs.commit();
   if (!args.quiet) std::cout << statistics_table(result);
   std::cout << "pdd: wrote " << args.output << " (" << result.mesh.faces.size() << " triangles, "
             << result.mesh.vertices.size() << " vertices";

@@ -9,6 +9,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <utility>
+#include <vector>
+
+#include <sys/stat.h>
 
 #include "support/scratch_dir.h"
 #include "support/shapes.h"
@@ -20,13 +24,36 @@ namespace fs = std::filesystem;
 
 using test::Outcome;
 
+std::size_t lines_of(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
 class CliTest : public test::ScratchDirTest {
  protected:
   Outcome pdd(const std::string& args) const { return run(PDD_BINARY, args); }
+  // The same, killed after a generous 30 s: for inputs that once made it hang.
+  Outcome pdd_without_hanging(const std::string& args) const {
+    return run("timeout", "30 '" + std::string(PDD_BINARY) + "' " + args);
+  }
+  std::string quoted_path(const std::string& name) const { return "'" + path(name) + "'"; }
+  // Runs each command (killed after 30 s), expecting exit code 2 and one
+  // error line that holds the case's message.
+  using Cases = std::vector<std::pair<std::string, std::string>>;
+  void expect_refused(const Cases& cases) const {
+    for (const auto& [command, message] : cases) {
+      const Outcome run = pdd_without_hanging(command);
+      EXPECT_EQ(run.code, 2) << command << ": " << run.err;
+      EXPECT_EQ(lines_of(run.err), 1u) << command << ": " << run.err;
+      EXPECT_NE(run.err.find(message), std::string::npos) << command << ": " << run.err;
+    }
+  }
 };
 
-std::size_t lines_of(const std::string& text) {
-  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+TriangleMesh tetrahedron() {
+  TriangleMesh m;
+  m.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  m.faces = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  return m;
 }
 
 TEST_F(CliTest, HelpAndVersionSucceed) {
@@ -203,6 +230,172 @@ TEST_F(CliTest, BadOptionValuesExitTwoLeavingNoFile) {
       EXPECT_NE(run.err.find("--max-memory"), std::string::npos) << run.err;
     }
     EXPECT_EQ(entries(), std::vector<std::string>{"in.ply"}) << option;
+  }
+}
+
+TEST_F(CliTest, OptionsOutOfReachStateTheirBound) {
+  write_points(path("in.ply"), test::sample_sphere(100));
+  const std::string run_on =
+      "reconstruct " + quoted_path("in.ply") + " -o " + quoted_path("out.ply") + " --quiet ";
+  expect_refused({
+      {run_on + "--enlarge-ratio 1e300",
+       "--enlarge-ratio: must be a number > 1 and <= 100, got '1e300'"},
+      {run_on + "--radius-edge 0.3", "--radius-edge: must be a number >= 1, got '0.3'"},
+      {run_on + "--threads 1024", "--threads: must be an integer from 0 to "},
+      {run_on + "--sphere-points 4",
+       "initial domain: the hull of 4 points on the domain sphere (--sphere-points) reaches"},
+      {run_on + "--sphere-points 8 --enlarge-ratio 1.2", "use more points or a ratio above"},
+  });
+  EXPECT_EQ(entries(), std::vector<std::string>{"in.ply"});
+  // The bounds themselves are reachable: 4 sphere points enclose the input at a ratio of 5.
+  const Outcome bounds =
+      pdd("reconstruct " + quoted_path("in.ply") + " -o " + quoted_path("out.ply") +
+          " --quiet --target-edge 0.4 --sphere-points 4 --enlarge-ratio 5 --radius-edge 1");
+  EXPECT_EQ(bounds.code, 0) << bounds.err;
+}
+
+// A binary PLY whose header declares more records than its bytes can hold
+// once made every command walk them for ever.
+TEST_F(CliTest, HeaderCountsNoFileHoldsFailAtOnce) {
+  write_mesh(path("mesh.ply"), tetrahedron());
+  write_points(path("points.ply"), test::sample_sphere(100));
+  // The same files with an element of empty records declared before the body.
+  for (const std::string name : {"mesh.ply", "points.ply"}) {
+    std::string text = slurp(path(name));
+    text.insert(text.find("end_header\n"), "element junk 9000000000000000000\n");
+    write_file("junk_" + name, text);
+  }
+  const std::string points = path("junk_points.ply"), mesh = path("junk_mesh.ply");
+  const std::string junk =
+      ": malformed header: element 'junk' declares 9000000000000000000 records but no properties";
+  expect_refused({
+      {"reconstruct '" + points + "' -o " + quoted_path("out.ply"), points + ": line 11" + junk},
+      {"quality '" + mesh + "'", mesh + ": line 10" + junk},
+      {"compare '" + mesh + "' " + quoted_path("mesh.ply"), mesh + ": line 10" + junk},
+      {"compare " + quoted_path("mesh.ply") + " '" + mesh + "'", mesh + ": line 10" + junk},
+  });
+  EXPECT_FALSE(fs::exists(path("out.ply")));
+}
+
+// A named pipe, a folder or a device as input is refused at once; opening a
+// pipe once waited for a writer for ever.
+TEST_F(CliTest, InputsThatAreNotRegularFilesAreRefusedWithoutBlocking) {
+  ASSERT_EQ(::mkfifo(path("pipe.ply").c_str(), 0600), 0);
+  ASSERT_EQ(::mkfifo(path("pipe.xyz").c_str(), 0600), 0);
+  fs::create_directory(path("folder.off"));
+  write_mesh(path("mesh.ply"), tetrahedron());
+  const std::string pipe = "pdd: error: " + path("pipe.ply") + ": not a regular file (a named pipe)";
+  expect_refused({
+      {"reconstruct " + quoted_path("pipe.ply") + " -o " + quoted_path("out.ply"), pipe},
+      {"reconstruct " + quoted_path("pipe.xyz") + " -o " + quoted_path("out.ply"),
+       "pdd: error: " + path("pipe.xyz") + ": not a regular file (a named pipe)"},
+      {"quality " + quoted_path("pipe.ply"), pipe},
+      {"compare " + quoted_path("mesh.ply") + " " + quoted_path("pipe.ply"), pipe},
+      {"quality " + quoted_path("folder.off"),
+       "pdd: error: " + path("folder.off") + ": is a folder, not a file"},
+  });
+  EXPECT_FALSE(fs::exists(path("out.ply")));
+}
+
+TEST_F(CliTest, NoOutputReplacesTheInput) {
+  write_points(path("in.ply"), test::sample_sphere(100));
+  const std::string before = slurp(path("in.ply"));
+  fs::create_directory(path("sub"));
+  fs::create_symlink(path("in.ply"), path("soft.ply"));
+  fs::create_hard_link(path("in.ply"), path("hard.ply"));
+  fs::create_symlink(path("in.ply"), path("stats.json"));
+  fs::create_symlink(path("in.ply"), path("domain.vtu"));
+  const std::string run_on = "reconstruct " + quoted_path("in.ply") + " -o ";
+  const std::string is_input =
+      ": cannot write: it is the input file " + path("in.ply") + "; pdd does not overwrite it\n";
+  Cases cases;
+  for (const char* alias : {"in.ply", "./in.ply", "sub/../in.ply", "soft.ply", "hard.ply"})
+    cases.emplace_back(run_on + quoted_path(alias), "pdd: error: " + path(alias) + is_input);
+  cases.emplace_back(run_on + quoted_path("out.ply") + " --stats " + quoted_path("stats.json"),
+                     path("stats.json") + is_input);
+  cases.emplace_back(run_on + quoted_path("out.ply") + " --domain-out " + quoted_path("domain.vtu"),
+                     path("domain.vtu") + is_input);
+  expect_refused(cases);
+  EXPECT_EQ(slurp(path("in.ply")), before);
+  EXPECT_FALSE(fs::exists(path("out.ply")));
+}
+
+TEST_F(CliTest, EveryOutputIsCheckedBeforeTheRun) {
+  // The input does not exist: each output's problem is reported first.
+  const std::string run_on = "reconstruct " + quoted_path("absent.ply") + " -o ";
+  write_file("file", "x");
+  const std::string long_name = std::string(300, 'n');
+  expect_refused({
+      {run_on + quoted_path(long_name + ".ply"),
+       "a name in it is 304 bytes long, more than the 255"},
+      {run_on + quoted_path("out.ply") + " --stats " + quoted_path(long_name + ".json"),
+       "a name in it is 305 bytes long"},
+      {run_on + quoted_path("out.ply") + " --domain-out " + quoted_path("file/d.vtu"),
+       path("file") + "' is not a folder"},
+      {run_on + quoted_path("out.ply") + " --save-iterations " + quoted_path("file"),
+       path("file") + ": cannot write: it is a regular file, not a folder"},
+      {run_on + quoted_path("out.ply") + " --save-iterations " + quoted_path("file/steps"),
+       path("file/steps") + ": cannot write: cannot reach it: Not a directory"},
+  });
+  EXPECT_EQ(entries(), std::vector<std::string>{"file"});
+}
+
+// A folder where no file can be created although its permissions say so (as
+// root, or under /proc): found before the run, nothing written.
+TEST_F(CliTest, AnOutputThatCannotBeCreatedFailsBeforeTheRun) {
+  write_points(path("in.ply"), test::sample_sphere(300));
+  const Outcome run = pdd("reconstruct " + quoted_path("in.ply") + " -o " +
+                          quoted_path("out.ply") + " --domain-out " + quoted_path("d.vtu") +
+                          " --stats /proc/pdd_stats.json");
+  EXPECT_EQ(run.code, 2) << run.err;
+  EXPECT_EQ(run.err.find("iteration"), std::string::npos) << "the run started: " << run.err;
+  EXPECT_EQ(lines_of(run.err), 1u) << run.err;
+  EXPECT_NE(run.err.find("/proc/pdd_stats.json: cannot write: the folder '/proc' is not writable"),
+            std::string::npos)
+      << run.err;
+  EXPECT_EQ(entries(), std::vector<std::string>{"in.ply"});
+}
+
+// Measures that would come out as NaN or infinite fail instead, naming the file.
+TEST_F(CliTest, ReportsNeverShowNanOrOverflow) {
+  write_mesh(path("t.ply"), tetrahedron());
+  TriangleMesh far = tetrahedron();
+  far.vertices[3] = Vec3(0, 0, -1e308);
+  write_mesh(path("far.ply"), far);
+  TriangleMesh scaled = tetrahedron();
+  for (Vec3& v : scaled.vertices) v *= 1e200;
+  write_mesh(path("scaled.off"), scaled);
+  const Cases cases = {
+      {"compare " + quoted_path("far.ply") + " " + quoted_path("t.ply"),
+       path("far.ply") + ": the vertices span 1e+308 (bounding-box diagonal), more than the 1e+150"},
+      {"compare --json " + quoted_path("t.ply") + " " + quoted_path("far.ply"),
+       path("far.ply") + ": the vertices span"},
+      {"quality " + quoted_path("scaled.off"),
+       path("scaled.off") + ": the vertices span 1.73e+200"},
+      {"quality --json " + quoted_path("scaled.off"), path("scaled.off")},
+      {"compare --samples 1099511627776 " + quoted_path("t.ply") + " " + quoted_path("t.ply"),
+       "--samples: Value 1099511627776 not in range 1 to 100000000"},
+  };
+  expect_refused(cases);
+  for (const auto& [command, message] : cases) EXPECT_EQ(pdd(command).out, "") << command;
+  const Outcome fine = pdd("quality --json " + quoted_path("t.ply"));
+  EXPECT_EQ(fine.code, 0) << fine.err;
+  EXPECT_EQ(fine.out.find("null"), std::string::npos) << fine.out;
+}
+
+// The kitten scan in UTM-like coordinates reconstructs as it does at the origin.
+TEST_F(CliTest, GeoreferencedCoordinatesAreAccepted) {
+  PointSet kitten = read_points(std::string(PDD_SOURCE_DIR) + "/data/kitten_scan.ply");
+  for (Vec3& p : kitten.points) p += Vec3(5e5, 5e6, 0);
+  write_points(path("utm.ply"), kitten);
+  const Outcome run = pdd("reconstruct " + quoted_path("utm.ply") + " -o " +
+                          quoted_path("out.ply") + " --quiet --target-edge 0.1");
+  ASSERT_EQ(run.code, 0) << run.err;
+  const TriangleMesh mesh = read_mesh(path("out.ply"));
+  EXPECT_GT(mesh.faces.size(), 100u);
+  for (const Vec3& v : mesh.vertices) {
+    EXPECT_NEAR(v.x(), 5e5, 2);
+    EXPECT_NEAR(v.y(), 5e6, 2);
   }
 }
 

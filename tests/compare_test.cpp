@@ -3,7 +3,9 @@
 // and the command line's exit codes and JSON.
 #include <gtest/gtest.h>
 #include <pdd/compare.h>
+#include <pdd/errors.h>
 #include <pdd/io.h>
+#include <pdd/report.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -257,6 +259,30 @@ TEST(CompareSurfaces, RejectsBadArguments) {
   EXPECT_THROW(compare_surfaces(TriangleMesh{}, m), std::invalid_argument);
   EXPECT_THROW(compare_surfaces(m, m, with_samples(0)), std::invalid_argument);
   EXPECT_THROW(compare_surfaces(m, m, with_samples(10, -1)), std::invalid_argument);
+  EXPECT_THROW(compare_surfaces(m, m, with_samples(CompareOptions::kMaxSamples + 1)),
+               std::invalid_argument);
+}
+
+TEST(CompareSurfaces, MeshesOutOfTheMeasurableRangeAreNamed) {
+  TriangleMesh m = icosphere(1);
+  EXPECT_NO_THROW(require_area(m, "unit"));
+  for (Vec3& v : m.vertices) v *= 1e160;
+  try {
+    require_area(m, "big.ply");
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("big.ply: the vertices span 3.46e+160", 0), 0u)
+        << e.what();
+  }
+  for (Vec3& v : m.vertices) v = v * 1e-160 * 1e-160;  // 3.46e-160 across
+  EXPECT_THROW(require_area(m, "small.ply"), InputError);
+  // A result that is not finite is never reported.
+  SurfaceDistance d;
+  d.diagonal = 1;
+  d.hausdorff = std::nan("");
+  EXPECT_THROW(comparison_report("a", "b", CompareOptions{}, d, true), InputError);
+  d.hausdorff = 1;
+  EXPECT_NO_THROW(comparison_report("a", "b", CompareOptions{}, d, true));
 }
 
 // ------------------------------------------------------------ command line

@@ -71,7 +71,55 @@ TEST(InitialDomain, RejectsBadOptions) {
   DomainOptions options;
   options.enlarge_ratio = 0.9;
   EXPECT_THROW(Domain::initial(input, options), InputError);
+  options.enlarge_ratio = 101;
+  EXPECT_THROW(Domain::initial(input, options), InputError);
+  options = DomainOptions();
+  options.radius_edge_bound = 0.9;
+  EXPECT_THROW(Domain::initial(input, options), InputError);
   EXPECT_THROW(Domain::initial(PointSet{}), InputError);
+}
+
+// The domain is the hull of the sphere's points: too few of them, or too
+// small a sphere, leave part of the input's bounding sphere outside it.
+TEST(InitialDomain, TheHullOfTheSpherePointsMustHoldTheInput) {
+  const PointSet input = test::sample_sphere(300);
+  DomainOptions options;
+  options.sphere_points = 4;
+  try {
+    Domain::initial(input, options);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the hull of 4 points on the domain sphere "
+                                         "(--sphere-points) reaches 0.227 of its radius"),
+              std::string::npos)
+        << e.what();
+  }
+  options.enlarge_ratio = 4.5;
+  const Domain d = Domain::initial(input, options);
+  for (const Vec3& p : input.points) EXPECT_GE(d.locate(p).tet, 0);
+  options = DomainOptions();
+  options.enlarge_ratio = 1.01;
+  EXPECT_THROW(Domain::initial(input, options), InputError);
+  options.sphere_points = 2000;
+  EXPECT_NO_THROW(Domain::initial(input, options));
+}
+
+TEST(Domain, TranslateMovesVerticesAndCentreKeepingTetsAndF) {
+  Domain d = Domain::initial(test::sample_sphere(200));
+  std::vector<double> f(d.num_vertices());
+  for (std::size_t i = 0; i < f.size(); ++i) f[i] = d.vertices()[i].x();
+  d.set_f(f);
+  const Domain before = d;
+  const Vec3 offset(5e5, -5e6, 3);
+  d.translate(offset);
+  EXPECT_EQ(d.tets(), before.tets());
+  EXPECT_EQ(d.f(), f);
+  EXPECT_EQ(d.center(), before.center() + offset);
+  for (std::size_t i = 0; i < d.num_vertices(); ++i)
+    EXPECT_EQ(d.vertices()[i], before.vertices()[i] + offset);
+  // Located and interpolated where it now is.
+  const Vec3 p = before.vertices()[7] * 0.5;
+  EXPECT_NEAR(d.interpolate(p + offset, f), before.interpolate(p, f), 1e-6);
 }
 
 TEST(Domain, TetsArePositivelyOrientedAndNeighborsAreSymmetric) {

@@ -14,6 +14,8 @@
 #include <random>
 #include <sstream>
 
+#include <sys/stat.h>
+
 #include "support/scratch_dir.h"
 #include "support/shapes.h"
 
@@ -369,7 +371,11 @@ TEST_F(IoTest, TruncatedOrOverlongPlyBodies) {
   for (int i = 0; i < 10; ++i) offset += 1 + 24 + 4 + 2 * (i % 3);
   write_file("t.ply", binary.substr(0, offset + 5));
   expect_input_error([&] { read_points(path("t.ply")); },
-                     {path("t.ply"), "truncated", "'vertex' record 11 of the 60"});
+                     {path("t.ply"), "truncated", "60 'vertex' records of at least 29 bytes"});
+  // Enough bytes for 60 records without their lists, not with them: found while reading.
+  write_file("t.ply", binary.substr(0, binary.size() - 13 - 60));
+  expect_input_error([&] { read_points(path("t.ply")); },
+                     {path("t.ply"), "truncated", "'vertex' record 59 of the 60"});
   write_file("t.ply", binary + "xy");
   expect_input_error([&] { read_points(path("t.ply")); },
                      {"2 bytes of data after the last element"});
@@ -435,7 +441,82 @@ TEST_F(IoTest, TextLinesThatDoNotParseAreNamed) {
   write_file("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 1\n");
   expect_input_error([&] { read_points(path("a.obj")); }, {"1 normals (vn) for 4 vertices (v)"});
   write_file("a.obj", "v 0 0 0 2\n");
-  expect_input_error([&] { read_points(path("a.obj")); }, {"line 1", "weight w = 2"});
+  expect_input_error([&] { read_points(path("a.obj")); }, {"line 1", "weight w = '2'"});
+}
+
+TEST_F(IoTest, TokensInMessagesAreEscapedAndShortened) {
+  // A NUL, a terminal escape sequence and a long token, quoted as they go
+  // into a message: every byte printable, the line short.
+  const std::string nul("0 0 z\0ero\n", 11);
+  const std::string escape = "0 0 \x1b[31mred\n";
+  const std::string longer = "0 0 " + std::string(1 << 20, '7') + "x\n";
+  for (const auto& [text, shown] :
+       {std::pair(nul, "'z\\x00ero'"), std::pair(escape, "'\\x1b[31mred'"),
+        std::pair(longer, "'7777777777777777777777777777777777777777...'")}) {
+    write_file("a.xyz", text);
+    try {
+      read_points(path("a.xyz"));
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(std::string("line 1: ") + shown + " is not a number"),
+                std::string::npos)
+          << message;
+      EXPECT_LT(message.size(), path("a.xyz").size() + 100) << message;
+      for (const char c : message) EXPECT_TRUE(c >= 0x20 && c < 0x7f) << int(c);
+    }
+  }
+  // Names from a PLY header too.
+  write_file("h.ply", "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\n"
+                      "property float y\nproperty float z\nelement " + std::string(5000, 'n') +
+                          " 5\nproperty float w\nend_header\n");
+  expect_input_error([&] { read_points(path("h.ply")); }, {"5 'nnnnnnnnnn", "...' records"});
+  try {
+    read_points(path("h.ply"));
+  } catch (const InputError& e) {
+    EXPECT_LT(std::string(e.what()).size(), path("h.ply").size() + 200) << e.what();
+  }
+}
+
+TEST_F(IoTest, CountsTheFileCannotHoldFailBeforeAnyRecordIsRead) {
+  const std::string vertices =
+      "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n";
+  const std::string body(4 * 12, '\0');
+  // Records without properties take no bytes: any count of them is refused.
+  write_file("j.ply", "ply\nformat binary_little_endian 1.0\n" + vertices +
+                          "element junk 9000000000000000000\nend_header\n" + body);
+  expect_input_error([&] { read_points(path("j.ply")); },
+                     {path("j.ply"), "line 7", "element 'junk' declares 9000000000000000000 "
+                                               "records but no properties"});
+  expect_input_error([&] { read_mesh(path("j.ply")); }, {path("j.ply"), "'junk'"});
+  // Records of a byte or more: the count against the bytes after the header.
+  write_file("k.ply", "ply\nformat binary_big_endian 1.0\n" + vertices +
+                          "element junk 9000000000000000000\nproperty list uchar int stuff\n"
+                          "end_header\n" + body + "\x01\x02");
+  expect_input_error([&] { read_points(path("k.ply")); },
+                     {path("k.ply"), "line 7", "9000000000000000000 'junk' records of at least 1 "
+                                               "byte each, but only 2 bytes are left"});
+  write_file("v.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 5\nproperty float x\n"
+                          "property float y\nproperty float z\nend_header\n" + body);
+  expect_input_error([&] { read_points(path("v.ply")); },
+                     {"line 3", "5 'vertex' records of at least 12 bytes each, but only 48"});
+  // ASCII: a record is a line of at least one byte.
+  write_file("a.ply", "ply\nformat ascii 1.0\nelement vertex 9000000000000000000\n"
+                      "property float x\nproperty float y\nproperty float z\nend_header\n"
+                      "0 0 0\n1 0 0\n");
+  expect_input_error([&] { read_points(path("a.ply")); },
+                     {"line 3", "9000000000000000000 'vertex' records of at least 1 byte (a line)"});
+  write_file("f.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                      "property float y\nproperty float z\nelement face 4611686018427387904\n"
+                      "property list uchar int vertex_indices\nend_header\n"
+                      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  expect_input_error([&] { read_mesh(path("f.ply")); }, {"line 7", "'face' records"});
+  // OFF: one line per vertex and per face.
+  write_file("a.off", "OFF\n9000000000000000000 1 0\n0 0 0\n");
+  expect_input_error([&] { read_points(path("a.off")); },
+                     {path("a.off"), "line 2", "declares 9000000000000000000 vertices and 1 faces"});
+  write_file("b.off", "OFF\n3 9000000000000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  expect_input_error([&] { read_mesh(path("b.off")); }, {"line 2", "9000000000000000000 faces"});
 }
 
 TEST_F(IoTest, NonFiniteCoordinatesAreNamed) {
@@ -498,6 +579,46 @@ TEST_F(IoTest, CoplanarOrCollinearPoints) {
   // Lifting one point by 1e-3 (1e-4 of the diagonal) makes the set valid.
   plane.points[17] += 1e-3 * u;
   EXPECT_EQ(validate_points(plane, "lifted").size(), 200u);
+}
+
+TEST_F(IoTest, FarFromTheOriginIsJudgedOnTheOwnExtent) {
+  // The kitten scan in UTM-like coordinates: valid as it is at the origin.
+  const PointSet kitten = read_points(std::string(PDD_SOURCE_DIR) + "/data/kitten_scan.ply");
+  PointSet shifted = kitten;
+  for (Vec3& p : shifted.points) p += Vec3(5e6, 5e6, 0);
+  EXPECT_EQ(validate_points(shifted, "shifted").size(), kitten.size());
+  for (Vec3& p : shifted.points) p += Vec3(1e9, -3e9, 1e8);
+  EXPECT_EQ(validate_points(shifted, "far").size(), kitten.size());
+  // A tilted plane far away is still a plane.
+  PointSet plane;
+  for (int i = 0; i < 50; ++i)
+    plane.points.push_back(Vec3(5e6, 5e6, 100) + Vec3(i % 7, i / 7, 0.5 * (i % 7) + 0.25 * (i / 7)));
+  expect_input_error([&] { validate_points(plane, "p"); }, {"p: all 50 points lie in one plane"});
+}
+
+TEST_F(IoTest, ExtentsOutOfRangeAndOutliersAreNamed) {
+  const PointSet huge = test::sample_sphere(200, 1e300);
+  expect_input_error([&] { validate_points(huge, "huge"); },
+                     {"huge: all 200 points span 3.45e+300", "more than the 1e+50"});
+  const PointSet tiny = test::sample_sphere(200, 1e-60);
+  expect_input_error([&] { validate_points(tiny, "tiny"); },
+                     {"tiny: all 200 points span only", "less than the 1e-50"});
+  // One point far away makes the rest look like a line: it is named instead.
+  PointSet outlier = test::sample_sphere(200);
+  outlier.points.push_back(Vec3(1e15, 0, 0));
+  outlier.normals.push_back(Vec3(1, 0, 0));
+  write_points(path("o.xyz"), outlier);
+  expect_input_error([&] { read_points(path("o.xyz")); },
+                     {path("o.xyz") + ": line 201 (point 201) at (1e+15, 0, 0) is an "
+                                      "outlier: the other 200 points span 3.45, all 201 span 1e+15"});
+  outlier.points.push_back(Vec3(0, -1e14, 0));
+  outlier.normals.push_back(Vec3(1, 0, 0));
+  expect_input_error([&] { validate_points(outlier, "two"); },
+                     {"two: 2 points are outliers, the farthest point 201", "remove them"});
+  // So is one whose distance overflows the extent.
+  outlier.points.back() = Vec3(0, 0, -1.7e308);
+  expect_input_error([&] { validate_points(outlier, "inf"); },
+                     {"inf: 2 points are outliers, the farthest point 202 at (0, 0, -1.7e+308)"});
 }
 
 TEST_F(IoTest, NormalsRequiredButAbsent) {
@@ -635,6 +756,99 @@ TEST_F(IoTest, CheckOutputPath) {
   expect_input_error([&] { check_output_path(path("no/m.ply"), OutputKind::kMesh); },
                      {path("no/m.ply"), "does not exist"});
   EXPECT_TRUE(entries().empty());
+}
+
+TEST_F(IoTest, CheckOutputPathRefusesLongNamesSpecialFilesAndTheInput) {
+  const std::string long_name = path(std::string(300, 'm') + ".ply");
+  expect_input_error([&] { check_output_path(long_name, OutputKind::kMesh); },
+                     {long_name, "a name in it is 304 bytes long, more than the 255"});
+  std::string deep = path("");
+  while (deep.size() < 5000) deep += std::string(200, 'd') + "/";
+  expect_input_error([&] { check_output_path(deep + "m.ply", OutputKind::kMesh); },
+                     {"the path is", "bytes long, more than the 4095"});
+  ASSERT_EQ(::mkfifo(path("pipe.ply").c_str(), 0600), 0);
+  expect_input_error([&] { check_output_path(path("pipe.ply"), OutputKind::kMesh); },
+                     {path("pipe.ply"), "it is a named pipe, not a regular file"});
+
+  // The input under another spelling, through a symbolic or a hard link.
+  write_points(path("in.ply"), sphere());
+  fs::create_directory(path("sub"));
+  fs::create_symlink(path("in.ply"), path("soft.ply"));
+  fs::create_hard_link(path("in.ply"), path("hard.ply"));
+  fs::create_symlink(path("in.ply"), path("stats.json"));
+  for (const std::string& alias :
+       {path("in.ply"), path("sub/../in.ply"), path("./in.ply"), path("soft.ply"), path("hard.ply")})
+    expect_input_error([&] { check_output_path(alias, OutputKind::kMesh, {path("in.ply")}); },
+                       {alias + ": cannot write: it is the input file " + path("in.ply")});
+  expect_input_error(
+      [&] { check_output_path(path("stats.json"), OutputKind::kStatistics, {path("in.ply")}); },
+      {"it is the input file"});
+  EXPECT_NO_THROW(check_output_path(path("out.ply"), OutputKind::kMesh, {path("in.ply")}));
+  EXPECT_NO_THROW(check_output_path(path("in.ply"), OutputKind::kMesh, {path("other.ply")}));
+
+  // A folder of outputs: created if missing, so its nearest existing ancestor counts.
+  EXPECT_NO_THROW(check_output_path(path("new/deeper"), OutputKind::kFolder));
+  EXPECT_NO_THROW(check_output_path(path("sub"), OutputKind::kFolder));
+  expect_input_error([&] { check_output_path(path("in.ply"), OutputKind::kFolder); },
+                     {path("in.ply"), "it is a regular file, not a folder"});
+  expect_input_error([&] { check_output_path(path("in.ply/x"), OutputKind::kFolder); },
+                     {path("in.ply/x"), "Not a directory"});
+  expect_input_error(
+      [&] { check_output_path(path(std::string(300, 'f')), OutputKind::kFolder); },
+      {"a name in it is 300 bytes long"});
+  EXPECT_FALSE(fs::exists(path("new")));
+}
+
+TEST_F(IoTest, StagedOutputsAreRenamedTogetherOrNotAtAll) {
+  write_file("old.json", "old");
+  const auto text = [](const char* s) { return [s](std::ostream& out) { out << s; }; };
+  {
+    // A failed write: the outputs staged before it go too, the targets stay as they were.
+    StagedOutputs outputs;
+    outputs.add(path("a.txt"), text("a"));
+    EXPECT_THROW(outputs.add(path("old.json"),
+                             [](std::ostream& out) {
+                               out << "half";
+                               throw std::runtime_error("stop");
+                             }),
+                 std::runtime_error);
+  }
+  EXPECT_EQ(entries(), std::vector<std::string>{"old.json"});
+  EXPECT_EQ(slurp(path("old.json")), "old");
+  {
+    // Nothing is visible before commit(), everything after.
+    StagedOutputs outputs;
+    outputs.add(path("a.txt"), text("a"));
+    outputs.add(path("old.json"), text("new"));
+    EXPECT_EQ(slurp(path("old.json")), "old");
+    EXPECT_FALSE(fs::exists(path("a.txt")));
+    outputs.commit();
+  }
+  EXPECT_EQ(slurp(path("a.txt")), "a");
+  EXPECT_EQ(slurp(path("old.json")), "new");
+  EXPECT_EQ(entries(), (std::vector<std::string>{"a.txt", "old.json"}));
+  {
+    // A rename that fails at commit() (the target became a folder): none is left.
+    StagedOutputs outputs;
+    outputs.add(path("b.txt"), text("b"));
+    outputs.add(path("c.txt"), text("c"));
+    outputs.add(path("d.txt"), text("d"));
+    fs::create_directory(path("c.txt"));
+    write_file("c.txt/keep", "x");
+    EXPECT_THROW(outputs.commit(), std::runtime_error);
+  }
+  EXPECT_EQ(entries(), (std::vector<std::string>{"a.txt", "c.txt", "old.json"}));
+  // Writers stage when asked.
+  {
+    StagedOutputs outputs;
+    write_mesh(path("m.ply"), awkward_tetrahedron(), {false, &outputs});
+    write_domain_vtu(path("d.vtu"), {{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)},
+                                     {{0, 1, 2, 3}}},
+                     {0, 1, 2, 3}, {}, {}, &outputs);
+    EXPECT_FALSE(fs::exists(path("m.ply")));
+    EXPECT_FALSE(fs::exists(path("d.vtu")));
+  }
+  EXPECT_EQ(entries(), (std::vector<std::string>{"a.txt", "c.txt", "old.json"}));
 }
 
 // ------------------------------------------------------------ domain output

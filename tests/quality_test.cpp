@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 #include <pdd/io.h>
+#include <pdd/errors.h>
 #include <pdd/quality.h>
+#include <pdd/report.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -264,6 +266,29 @@ TEST(SurfaceTopology, CubesSharingAVertexAreNotManifold) {
   EXPECT_FALSE(s.manifold);
   EXPECT_EQ(s.components, 1u);
   EXPECT_EQ(s.genus, -1);
+}
+
+// Angles of a mesh too large or too small for their squared lengths would
+// come out as NaN: the report names the file instead.
+TEST(QualityReport, RefusesMeshesOutOfTheMeasurableRange) {
+  TriangleMesh m = cube();
+  EXPECT_NE(quality_report("cube.ply", m, true).find("\"min_angle\": 45.000000"),
+            std::string::npos);
+  for (Vec3& v : m.vertices) v *= 1e200;
+  try {
+    quality_report("big.ply", m, false);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "big.ply: the vertices span 1.73e+200 (bounding-box diagonal), more than the "
+              "1e+150 at which angles, areas and distances can be computed");
+  }
+  for (Vec3& v : m.vertices) v = v * 1e-180 * 1e-180;  // 1e-160 across
+  EXPECT_THROW(quality_report("small.ply", m, true), InputError);
+  // All at one point: degenerate, measured as such.
+  for (Vec3& v : m.vertices) v = Vec3(1, 2, 3);
+  EXPECT_NE(quality_report("point.ply", m, true).find("\"degenerate_faces\": 0"),
+            std::string::npos);
 }
 
 TEST(SurfaceTopology, DegenerateFaceIsReported) {

@@ -15,6 +15,8 @@
 namespace pdd {
 
 struct CompareOptions {
+  // The most samples compare_surfaces takes: about 70 bytes each while it runs.
+  static constexpr std::size_t kMaxSamples = 100000000;
   std::size_t samples = 200000;  // area-uniform samples on each surface (as for the peers' table)
   double fscore_threshold = 0.005;  // τ of the F-score, relative to B's bounding-box diagonal
   std::uint64_t seed = 0;           // the sampling's random draws
@@ -48,7 +50,8 @@ struct SurfaceDistance {
 double surface_area(const TriangleMesh& mesh);
 
 // Throws InputError "<source>: the mesh has no area (...)" when all faces of
-// `mesh` are degenerate: such a mesh cannot be sampled or compared.
+// `mesh` are degenerate: such a mesh cannot be sampled or compared; and
+// require_measurable's errors (quality.h) first.
 void require_area(const TriangleMesh& mesh, const std::string& source);
 
 // `count` points drawn uniformly by area on the faces of `mesh`: a face is
@@ -64,7 +67,8 @@ std::vector<Vec3> sample_surface(const TriangleMesh& mesh, std::size_t count, st
 // the segment it is, but draws no samples); queries run in parallel and the
 // result depends only on the meshes and the options. Throws
 // std::invalid_argument when a mesh has no area, a face indexes a missing
-// vertex, samples is 0 or fscore_threshold is negative.
+// vertex, samples is 0 or more than kMaxSamples or fscore_threshold is
+// negative.
 SurfaceDistance compare_surfaces(const TriangleMesh& a, const TriangleMesh& b,
                                  const CompareOptions& options = {});
 

@@ -15,9 +15,18 @@ namespace pdd {
 
 // Initialization of §3.2. Defaults are the paper's.
 struct DomainOptions {
+  // At most this ratio: a larger sphere only spends the domain's vertices far
+  // from the data, and with enough orders of magnitude between the input and
+  // the sphere the triangulation's constructions lose their precision.
+  static constexpr double kMaxEnlargeRatio = 100;
   double enlarge_ratio = 1.4;      // radius of the domain sphere / radius of the input's bounding sphere
   int sphere_points = 100;         // points spread uniformly on the domain sphere
-  double radius_edge_bound = 1.3;  // Delaunay refinement: circumradius / shortest edge <= this
+  // Delaunay refinement: circumradius / shortest edge <= this. At least
+  // kMinRadiusEdgeBound: circumcentre insertion meets 1 with a few hundred
+  // points, and below 0.9 it ran to max_refinement_points (the regular
+  // tet's sqrt(6)/4 = 0.61 is the lowest ratio there is).
+  static constexpr double kMinRadiusEdgeBound = 1;
+  double radius_edge_bound = 1.3;
   int max_refinement_points = 200000;  // safety budget for the refinement (never reached in practice)
 };
 
@@ -111,6 +120,11 @@ class Domain {
   // triangulation and carries f over by barycentric interpolation in the old
   // one (§3.3, "Linear Solver"). Vertices keep their indices.
   void move_vertices(const std::vector<Vec3>& new_positions);
+  // Moves every vertex and center() by `offset`, keeping the tets and f: a
+  // translation keeps a Delaunay triangulation Delaunay, up to the rounding of
+  // the new coordinates. For a domain built in coordinates relative to some
+  // centre and handed back in the caller's (pdd::reconstruct).
+  void translate(const Vec3& offset);
   // The same on a new domain, this one unchanged (no copy of it is made).
   Domain moved(const std::vector<Vec3>& new_positions) const;
   // The same with f at the new positions given (one value per vertex) by a

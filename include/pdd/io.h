@@ -26,14 +26,26 @@ namespace pdd {
 
 // Checks applied to every point set read from a file (and available for point
 // sets built in memory through validate_points).
+// Every test is on the points' own extent, wherever they are: a scan in
+// georeferenced coordinates (millions of units from the origin) passes as it
+// would at the origin.
 struct ValidationOptions {
   std::size_t min_points = 4;  // fewer distinct points cannot enclose a volume
   // A point set whose thickness (extent along its thinnest direction) is at
-  // most flatness_tolerance * (bounding-box diagonal) is rejected as coplanar;
-  // one whose bounding-box diagonal is at most flatness_tolerance * (largest
-  // absolute coordinate) is rejected as coincident. 1e-6 is well above the
-  // rounding of float32 files, so a plane stored as floats is caught.
+  // most flatness_tolerance * (bounding-box diagonal) is rejected as coplanar.
+  // 1e-6 is well above the rounding of float32 files, so a plane stored as
+  // floats is caught.
   double flatness_tolerance = 1e-6;
+  // One whose bounding-box diagonal is at most coincidence_tolerance * (its
+  // largest absolute coordinate) is rejected as coincident: its points differ
+  // by little more than the rounding of their coordinates, and so would the
+  // output's vertices.
+  double coincidence_tolerance = 1e-12;
+  // The bounding-box diagonals the reconstruction computes with: beyond
+  // them, powers of lengths (tet volumes, squared areas) overflow or
+  // underflow a double.
+  double min_extent = 1e-50;
+  double max_extent = 1e50;
 };
 
 // What validation changed, for the caller to show the user.
@@ -72,8 +84,10 @@ PointSet read_points(const std::string& path, ValidationReport* report = nullptr
 // occurrence and its normal are kept; the report says how many were merged).
 // Throws InputError, with a message starting with `source`, when a coordinate
 // is NaN or infinite, a normal has zero length (or is not finite), there are
-// fewer than options.min_points distinct points, or all points coincide or lie
-// in one plane (see ValidationOptions). Points are numbered from 1 in messages.
+// fewer than options.min_points distinct points, or all points coincide, lie
+// in one plane or span an extent out of range (see ValidationOptions); when a
+// few far points (outliers) cause the last two, the message names them.
+// Points are numbered from 1 in messages.
 // Normals are kept as given (not normalized).
 PointSet validate_points(PointSet points, const std::string& source,
                          ValidationReport* report = nullptr, const ValidationOptions& options = {});
@@ -92,6 +106,8 @@ void require_normals(const PointSet& points, const std::string& source, const st
 
 // --------------------------------------------------------------- writing
 
+class StagedOutputs;
+
 struct PointWriteOptions {
   bool ascii = false;  // PLY only: ASCII instead of binary little-endian
 };
@@ -104,6 +120,9 @@ void write_points(const std::string& path, const PointSet& points,
 
 struct MeshWriteOptions {
   bool ascii = false;  // PLY only: ASCII instead of binary little-endian
+  // When set, the file is written into a temporary now and renamed onto
+  // `path` by staged->commit(), with the run's other outputs.
+  StagedOutputs* staged = nullptr;
 };
 
 // Writes a triangle mesh: .ply (vertices as double x y z so that positions
@@ -134,15 +153,17 @@ struct DataArray {
 // per vertex) and any extra point or cell data. Throws std::invalid_argument
 // when a size does not match, a tet refers to a missing vertex or a value is
 // not finite (VTK's ASCII reader cannot read nan or inf), InputError when the
-// extension is not .vtu or the target cannot be written.
+// extension is not .vtu or the target cannot be written. With `staged`, the
+// file is renamed onto `path` by staged->commit() (MeshWriteOptions::staged).
 void write_domain_vtu(const std::string& path, const TetMesh& mesh, const std::vector<double>& f,
                       const std::vector<DataArray>& point_data = {},
-                      const std::vector<DataArray>& cell_data = {});
+                      const std::vector<DataArray>& cell_data = {},
+                      StagedOutputs* staged = nullptr);
 
 // ------------------------------------------------------------ output paths
 
-// What kind of file an output path names.
-enum class OutputKind { kMesh, kPoints, kDomain, kStatistics };
+// What kind of file an output path names: a file, or a folder of files.
+enum class OutputKind { kMesh, kPoints, kDomain, kStatistics, kFolder };
 
 // Runs `write` on a stream into a new temporary file in path's folder, then
 // renames the temporary to `path`. When `write` throws or any write, flush or
@@ -151,11 +172,40 @@ enum class OutputKind { kMesh, kPoints, kDomain, kStatistics };
 // std::runtime_error for a failed write). Every writer above goes through it.
 void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
+// The outputs of one run, written together or not at all: add() writes each
+// into a temporary next to its target at once (failing as write_atomically
+// does) and commit() renames them all onto their targets. The temporaries not
+// committed are removed when the object goes away, so a run that fails before
+// commit() leaves every target as it was. Should a rename fail in commit()
+// (the folder changed meanwhile), the outputs renamed before it are removed
+// too and the error is thrown (std::runtime_error): none of them is left.
+class StagedOutputs {
+ public:
+  StagedOutputs() = default;
+  StagedOutputs(const StagedOutputs&) = delete;
+  StagedOutputs& operator=(const StagedOutputs&) = delete;
+  ~StagedOutputs();
+  void add(const std::string& path, const std::function<void(std::ostream&)>& write);
+  void commit();
+
+ private:
+  struct Staged {
+    std::string path;
+    std::string temporary;
+  };
+  std::vector<Staged> staged_;
+};
+
 // Checks, before any work is done, that `path` has an extension write_mesh
 // (kMesh), write_points (kPoints) or write_domain_vtu (kDomain) accepts, or
-// .json (kStatistics), that
-// it is not a folder and that its folder exists and is writable. Throws
-// InputError naming the path otherwise.
-void check_output_path(const std::string& path, OutputKind kind);
+// .json (kStatistics); that its folder exists and is writable; that no name
+// in it is longer than the file system allows (NAME_MAX, PATH_MAX); that a
+// file already there is a regular file (not a folder, a named pipe or a
+// device); and that it is none of `inputs`, under another spelling or through
+// a symbolic or hard link. kFolder (--save-iterations) names a folder that is
+// created if missing: it must be a folder if it exists, and its nearest
+// existing ancestor writable. Throws InputError naming the path otherwise.
+void check_output_path(const std::string& path, OutputKind kind,
+                       const std::vector<std::string>& inputs = {});
 
 }  // namespace pdd

@@ -98,7 +98,10 @@ struct ReconstructOptions {
   double target_area = 0;         // uniform: the target isofacet area; 0: from target_edge_length
   double target_edge_length = 0;  // uniform: the target edge; 0: default_target_edge (sizing.h)
   AdaptiveSizingOptions adaptive;  // adaptive sizing of §3.4
-  std::shared_ptr<const SizingField> custom_sizing;  // library only: overrides `sizing` when set
+  // Library only: overrides `sizing` when set. The run works in coordinates
+  // relative to the input's bounding-box centre (reconstruct()); the field is
+  // given the isofacets in the input's coordinates, the Domain in the run's.
+  std::shared_ptr<const SizingField> custom_sizing;
   DataDistanceOptions away_from_data;  // uniform and adaptive: coarser where no input is near
                                        // (sizing.h; max_factor = 1 turns it off)
 
@@ -192,8 +195,16 @@ int default_octree_depth(const PointSet& points);
 PointSet prepare_normals(const PointSet& points, const ReconstructOptions& options,
                          NormalsReport* report = nullptr);
 
-// Reconstructs a closed surface from `points`. Throws InputError for bad
-// input or options, SolverError when a solve fails.
+// The most worker threads a run may ask for (ReconstructOptions::threads):
+// 4 times the hardware threads. More only slow a run down, and past a few
+// hundred the thread libraries fail to create them.
+int max_threads();
+
+// Reconstructs a closed surface from `points`. The run works in coordinates
+// relative to the points' bounding-box centre and returns the mesh and the
+// domain in the points' own, so that translated points give the same output,
+// translated, up to rounding. Throws InputError for bad input or options,
+// SolverError when a solve fails.
 Result reconstruct(const PointSet& points, const ReconstructOptions& options = {});
 
 }  // namespace pdd

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace pdd {
@@ -22,6 +23,13 @@ struct Histogram {
 };
 // The histogram of `values` in `bins` bins from lower to upper (NaNs are not counted).
 Histogram histogram(const std::vector<double>& values, double lower, double upper, int bins);
+
+// Throws InputError "<source>: ..." when the faces' vertices span more than
+// 1e150, or less than 1e-150 but more than 0 (their bounding-box diagonal):
+// the squares and products of lengths in angles, areas and distances would
+// overflow or underflow a double, and the measures come out as NaN or
+// nonsense. Called by quality_report and require_area (compare.h).
+void require_measurable(const TriangleMesh& mesh, const std::string& source);
 
 // ---------------------------------------------------------------- triangles
 

@@ -30,7 +30,8 @@ std::string normals_note(const Result& result);
 std::string memory_budget_note(const Result& result);
 
 // --save-iterations: writes the isosurface (.ply) and the domain with f (.vtu)
-// of every iteration into `folder`, created if missing (Figure 7).
+// of every iteration into `folder`, created if missing (Figure 7). InputError
+// at once when `folder` cannot be (check_output_path, OutputKind::kFolder).
 IterationCallback iteration_files(const std::string& folder, bool ascii);
 
 // `pdd quality MESH [--json]`: triangle quality (angles, histogram) and the

@@ -304,8 +304,10 @@ def compare(a, b, *, samples: int = _COMPARE["samples"],
     `pdd compare --json`: Hausdorff, Chamfer-L1, means, RMS, F-score, each also relative
     to b's bounding-box diagonal (keys ending in _relative)."""
     a, b = _as_mesh(a, "a"), _as_mesh(b, "b")
-    if isinstance(samples, bool) or not isinstance(samples, numbers.Integral) or samples < 1:
-        raise ValueError(f"samples: must be an integer from 1 to 2^40, got {samples!r}")
+    most = _COMPARE["max_samples"]
+    if (isinstance(samples, bool) or not isinstance(samples, numbers.Integral) or samples < 1
+            or samples > most):
+        raise ValueError(f"samples: must be an integer from 1 to {most}, got {samples!r}")
     if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0:
         raise ValueError(f"seed: must be an integer >= 0, got {seed!r}")
     report = json.loads(_pdd.compare(a.vertices, a.faces, b.vertices, b.faces, int(samples),

@@ -83,8 +83,10 @@ std::string compare_json(const py::handle& a_vertices, const py::handle& a_faces
   options.samples = samples;
   options.fscore_threshold = fscore_threshold;
   options.seed = seed;
-  if (samples < 1 || samples > (std::size_t{1} << 40))
-    throw InputError("samples: must be an integer from 1 to 2^40, got " + std::to_string(samples));
+  if (samples < 1 || samples > CompareOptions::kMaxSamples)
+    throw InputError("samples: must be an integer from 1 to " +
+                     std::to_string(CompareOptions::kMaxSamples) + ", got " +
+                     std::to_string(samples));
   if (!(fscore_threshold >= 0) || !std::isfinite(fscore_threshold))
     throw InputError("fscore_threshold: must be a number >= 0, got " +
                      std::to_string(fscore_threshold));
@@ -144,6 +146,7 @@ PYBIND11_MODULE(_pdd, m) {
     const CompareOptions d;
     py::dict out;
     out["samples"] = d.samples;
+    out["max_samples"] = CompareOptions::kMaxSamples;
     out["fscore_threshold"] = d.fscore_threshold;
     out["seed"] = d.seed;
     return out;

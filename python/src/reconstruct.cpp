@@ -22,6 +22,7 @@ py::dict reconstruct(const py::handle& points, const py::handle& normals,
   ReconstructOptions run_options;
   for (const auto& [name, value] : options) set_reconstruct_option(run_options, name, value);
   if (!domain_out.empty()) check_output_path(domain_out, OutputKind::kDomain);
+  if (!save_iterations.empty()) check_output_path(save_iterations, OutputKind::kFolder);
 
   ValidationReport report;
   const PointSet input =

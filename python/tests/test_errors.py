@@ -43,6 +43,13 @@ def test_normals_must_match_the_points(sphere):
     ({"iterations": 2.5}, r"--iterations: must be an integer, got 2.5"),
     ({"no_cleanup": 1}, r"--no-cleanup: must be True or False, got 1"),
     ({"target_edge": float("nan")}, r"--target-edge: must be a number > 0, got 'nan'"),
+    ({"enlarge_ratio": 1e300}, r"--enlarge-ratio: must be a number > 1 and <= 100, got '1e\+300'"),
+    ({"radius_edge": 0.3}, r"--radius-edge: must be a number >= 1, got '0.3'"),
+    ({"threads": 100000}, r"--threads: must be an integer from 0 to \d+, got '100000'"),
+    ({"sphere_points": 4}, r"initial domain: the hull of 4 points on the domain sphere "
+                           r"\(--sphere-points\) reaches 0.227 of its radius.*"
+                           r"use more points or a ratio above 4.41"),
+    ({"max_memory": "\x1b[2J" + "9" * 1000}, r"--max-memory: '\\x1b\[2J9{36}\.\.\.' is not"),
 ])
 def test_bad_options_name_the_option_and_the_bound(sphere, options, message):
     with pytest.raises(ValueError, match=message):
@@ -71,6 +78,15 @@ def test_bad_meshes(tmp_path):
         pdd.write_mesh(tmp_path / "m.ply", pdd.Mesh(vertices, np.zeros((0, 3), int)))
     with pytest.raises(ValueError, match="a: the mesh has no area"):
         pdd.compare(pdd.Mesh(np.zeros((3, 3)), [[0, 1, 2]]), pdd.Mesh(vertices, [[0, 1, 2]]))
+    with pytest.raises(ValueError, match="samples: must be an integer from 1 to 100000000"):
+        pdd.compare(pdd.Mesh(vertices, [[0, 1, 2]]), pdd.Mesh(vertices, [[0, 1, 2]]),
+                    samples=2**40)
+    with pytest.raises(ValueError, match=r"mesh: the vertices span 1.73e\+200"):
+        pdd.quality(pdd.Mesh(vertices * 1e200, [[0, 1, 2]]))
+    with pytest.raises(ValueError, match=r"a: the vertices span 1e\+308"):
+        far = vertices.copy()
+        far[2] = [0, 0, -1e308]
+        pdd.compare(pdd.Mesh(far, [[0, 1, 2]]), pdd.Mesh(vertices, [[0, 1, 2]]))
     assert not (tmp_path / "m.ply").exists()
 
 

@@ -182,6 +182,16 @@ void Domain::move_vertices(const std::vector<Vec3>& new_positions) {
   *this = moved(new_positions);
 }
 
+void Domain::translate(const Vec3& offset) {
+  Impl& d = *impl_;
+  for (auto v = d.dt.finite_vertices_begin(); v != d.dt.finite_vertices_end(); ++v) {
+    const Vec3 p = to_vec(v->point()) + offset;
+    v->set_point(to_point(p));
+    d.mesh.vertices[v->info()] = p;
+  }
+  d.center += offset;
+}
+
 double radius_edge_ratio(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   const Vec3 cc = to_vec(CGAL::circumcenter(to_point(a), to_point(b), to_point(c), to_point(d)));
   const double shortest = std::sqrt(std::min({(a - b).squaredNorm(), (a - c).squaredNorm(),

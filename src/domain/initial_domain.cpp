@@ -9,6 +9,7 @@
 #include <CGAL/Min_sphere_of_spheres_d.h>
 
 #include <cmath>
+#include <cstdio>
 #include <queue>
 #include <string>
 
@@ -44,6 +45,23 @@ void bounding_sphere(const std::vector<Vec3>& points, Vec3& center, double& radi
   radius = ms.radius();
 }
 
+// The distance from `center` to the nearest facet of the triangulation's
+// convex hull: the largest ball around it that the domain holds.
+double hull_inradius(const Delaunay& dt, const Vec3& center) {
+  if (dt.dimension() < 3) return 0;
+  double nearest = INFINITY;
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
+    if (!dt.is_infinite(c)) continue;
+    const int i = c->index(dt.infinite_vertex());
+    const Vec3 a = to_vec(c->vertex((i + 1) % 4)->point());
+    const Vec3 b = to_vec(c->vertex((i + 2) % 4)->point());
+    const Vec3 d = to_vec(c->vertex((i + 3) % 4)->point());
+    const Vec3 normal = (b - a).cross(d - a).normalized();
+    nearest = std::min(nearest, std::abs((center - a).dot(normal)));
+  }
+  return nearest;
+}
+
 double circumradius(Delaunay::Cell_handle c) {
   return std::sqrt(CGAL::squared_radius(c->vertex(0)->point(), c->vertex(1)->point(),
                                         c->vertex(2)->point(), c->vertex(3)->point()));
@@ -70,14 +88,21 @@ struct BadCell {
 Domain Domain::initial(const PointSet& input, const DomainOptions& options,
                        RefinementReport* report) {
   if (input.points.empty()) throw InputError("initial domain: the point set is empty");
-  if (!(options.enlarge_ratio > 1.0))
-    throw InputError("initial domain: enlarge ratio must be > 1, got " +
-                     std::to_string(options.enlarge_ratio));
+  if (!(options.enlarge_ratio > 1.0 && options.enlarge_ratio <= DomainOptions::kMaxEnlargeRatio)) {
+    char what[160];
+    std::snprintf(what, sizeof what, "initial domain: the enlarge ratio must be > 1 and <= %g, got %g",
+                  DomainOptions::kMaxEnlargeRatio, options.enlarge_ratio);
+    throw InputError(what);
+  }
   if (options.sphere_points < 4)
     throw InputError("initial domain: at least 4 sphere points are needed, got " +
                      std::to_string(options.sphere_points));
-  if (!(options.radius_edge_bound > 0))
-    throw InputError("initial domain: the radius-edge bound must be positive");
+  if (!(options.radius_edge_bound >= DomainOptions::kMinRadiusEdgeBound)) {
+    char what[160];
+    std::snprintf(what, sizeof what, "initial domain: the radius-edge bound must be >= %g, got %g",
+                  DomainOptions::kMinRadiusEdgeBound, options.radius_edge_bound);
+    throw InputError(what);
+  }
 
   Vec3 c;
   double r;
@@ -88,6 +113,20 @@ Domain Domain::initial(const PointSet& input, const DomainOptions& options,
   Domain domain(fibonacci_sphere(c, R, options.sphere_points),
                 std::vector<std::uint8_t>(options.sphere_points, kOnBoundarySphere));
   Impl& d = *domain.impl_;
+  // The domain is the hull of the sphere points; the input's bounding sphere
+  // must fit in it. Whether it does depends on the two options only: the
+  // hull of n points reaches a fixed fraction of the sphere's radius.
+  const double reach = hull_inradius(d.dt, c) / R;
+  if (!(reach * options.enlarge_ratio > 1)) {
+    char what[320];
+    std::snprintf(what, sizeof what,
+                  "initial domain: the hull of %d points on the domain sphere (--sphere-points) "
+                  "reaches %.3g of its radius, less than the input's bounding sphere at 1/%g "
+                  "(--enlarge-ratio) = %.3g of it; use more points or a ratio above %.3g",
+                  options.sphere_points, reach, options.enlarge_ratio, 1 / options.enlarge_ratio,
+                  1 / reach);
+    throw InputError(what);
+  }
   d.center = c;
   d.radius = R;
 

@@ -1,6 +1,7 @@
 // Atomic output: every writer streams into a fresh temporary file next to the
 // target and renames it over the target only once everything is written and
-// flushed, so a failed run never leaves a partial or empty file. POSIX calls
+// flushed (StagedOutputs: once every output of a run is), so a failed run
+// never leaves a partial or empty file. POSIX calls
 // are used directly (open with O_EXCL, write, fsync, rename) because the
 // standard streams neither create a file exclusively nor report errno.
 #include <fcntl.h>
@@ -16,6 +17,8 @@
 #include <stdexcept>
 #include <streambuf>
 
+#include "io/formats.h"
+#include "io/output_paths.h"
 #include "io/text.h"
 
 namespace pdd {
@@ -63,51 +66,34 @@ class FdBuffer : public std::streambuf {
   char buffer_[1 << 16];
 };
 
-fs::path folder_of(const std::string& path) {
-  const fs::path parent = fs::path(path).parent_path();
-  return parent.empty() ? fs::path(".") : parent;
-}
-
-// Why a file cannot be created in `path`'s folder, or "" when it can.
-std::string folder_problem(const std::string& path) {
-  const fs::path folder = folder_of(path);
-  std::error_code ec;
-  const auto status = fs::status(folder, ec);
-  if (status.type() == fs::file_type::not_found) {
-    return "the folder '" + folder.string() + "' does not exist";
-  }
-  if (status.type() != fs::file_type::directory) {
-    return "'" + folder.string() + "' is not a folder";
-  }
-  if (::access(folder.c_str(), W_OK | X_OK) != 0) {
-    return "the folder '" + folder.string() + "' is not writable (" + std::strerror(errno) + ")";
-  }
-  if (fs::is_directory(fs::status(path, ec))) return "it is a folder";
-  return "";
-}
-
 // Creates a new, empty temporary file next to `path`; returns its descriptor.
+// Its name is the target's with a dot before and a suffix after, or a short
+// one when that would be longer than the file system allows.
 int create_temporary(const std::string& path, std::string& temporary) {
   static std::atomic<unsigned> counter{0};
-  const fs::path target(path);
+  const fs::path folder = io::folder_of(path);
+  const std::string name = fs::path(path).filename().string();
+  const std::size_t name_max = io::name_max(folder);
   for (int attempt = 0; attempt < 100; ++attempt) {
-    temporary = (folder_of(path) / ("." + target.filename().string() + ".tmp-" +
-                                    std::to_string(::getpid()) + "-" + std::to_string(counter++)))
-                    .string();
+    const std::string suffix = ".tmp-" + std::to_string(::getpid()) + "-" +
+                               std::to_string(counter++);
+    const std::string long_name = "." + name + suffix;
+    temporary = (folder / (long_name.size() <= name_max ? long_name : ".pdd" + suffix)).string();
     // 0666 minus the umask: the final file gets the usual permissions.
     const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd >= 0) return fd;
     if (errno == EEXIST) continue;
     const int error = errno;
-    const std::string problem = folder_problem(path);
+    const std::string problem = io::target_problem(path);
     io::fail(path, "cannot write: " + (problem.empty() ? std::strerror(error) : problem));
   }
   io::fail(path, "cannot write: no free name for a temporary file");
 }
 
-}  // namespace
-
-void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
+// Writes into a new temporary next to `path` and returns its name, flushed
+// and closed; removes it and throws on any failure.
+std::string write_temporary(const std::string& path,
+                            const std::function<void(std::ostream&)>& write) {
   if (fs::is_directory(path)) io::fail(path, "cannot write: it is a folder");
   std::string temporary;
   int fd = create_temporary(path, temporary);
@@ -126,35 +112,53 @@ void write_atomically(const std::string& path, const std::function<void(std::ost
     const int closed = ::close(fd);
     fd = -1;
     if (closed != 0) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
-    if (::rename(temporary.c_str(), path.c_str()) != 0) {
-      throw std::runtime_error(
-          path + ": cannot rename the temporary file onto it: " + std::strerror(errno));
-    }
   } catch (...) {
     if (fd >= 0) ::close(fd);
     ::unlink(temporary.c_str());
     throw;
   }
+  return temporary;
 }
 
-void check_output_path(const std::string& path, OutputKind kind) {
-  switch (kind) {
-    case OutputKind::kMesh:
-      io::format_of(path, {io::Format::kPly, io::Format::kOff, io::Format::kObj}, "mesh");
-      break;
-    case OutputKind::kPoints:
-      io::format_of(path, {io::Format::kPly, io::Format::kXyz, io::Format::kOff, io::Format::kObj},
-                    "point set");
-      break;
-    case OutputKind::kDomain:
-      io::format_of(path, {io::Format::kVtu}, "domain");
-      break;
-    case OutputKind::kStatistics:
-      io::format_of(path, {io::Format::kJson}, "statistics");
-      break;
+}  // namespace
+
+StagedOutputs::~StagedOutputs() {
+  for (const Staged& s : staged_) ::unlink(s.temporary.c_str());
+}
+
+void StagedOutputs::add(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  const std::string temporary = write_temporary(path, write);
+  staged_.push_back({path, temporary});
+}
+
+void StagedOutputs::commit() {
+  for (std::size_t i = 0; i < staged_.size(); ++i) {
+    if (::rename(staged_[i].temporary.c_str(), staged_[i].path.c_str()) == 0) continue;
+    const int error = errno;
+    // None of the outputs stays: those renamed already go, the destructor
+    // removes the other temporaries.
+    for (std::size_t k = 0; k < i; ++k) ::unlink(staged_[k].path.c_str());
+    const std::string path = staged_[i].path;
+    staged_.erase(staged_.begin(), staged_.begin() + static_cast<std::ptrdiff_t>(i));
+    throw std::runtime_error(path + ": cannot rename the temporary file onto it: " +
+                             std::strerror(error));
   }
-  const std::string problem = folder_problem(path);
-  if (!problem.empty()) io::fail(path, "cannot write: " + problem);
+  staged_.clear();
+}
+
+void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  StagedOutputs output;
+  output.add(path, write);
+  output.commit();
+}
+
+void io::write_output(const std::string& path, StagedOutputs* staged,
+                      const std::function<void(std::ostream&)>& write) {
+  if (staged) {
+    staged->add(path, write);
+  } else {
+    write_atomically(path, write);
+  }
 }
 
 }  // namespace pdd

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -59,6 +60,10 @@ void write_obj(std::ostream& out, const std::vector<Vec3>& vertices,
                const std::vector<Vec3>& normals, const Faces& faces);
 void write_xyz(std::ostream& out, const std::vector<Vec3>& points,
                const std::vector<Vec3>& normals);
+
+// write_atomically, or staged->add() when `staged` is set.
+void write_output(const std::string& path, StagedOutputs* staged,
+                  const std::function<void(std::ostream&)>& write);
 
 // Throws std::invalid_argument when face `index` refers to a vertex outside
 // [0, num_vertices).

@@ -80,7 +80,7 @@ TriangleMesh read_mesh(const std::string& path) {
 void write_mesh(const std::string& path, const TriangleMesh& mesh,
                 const MeshWriteOptions& options) {
   const io::Format format = io::format_of(path, kMeshFormats, "mesh");
-  write_atomically(path, [&](std::ostream& out) {
+  io::write_output(path, options.staged, [&](std::ostream& out) {
     switch (format) {
       case io::Format::kPly:
         io::write_ply(out, mesh.vertices, {}, &mesh.faces, options.ascii);

@@ -16,8 +16,8 @@ std::int64_t corner_vertex(std::string_view corner, std::size_t vertices_so_far,
   std::int64_t index = 0;
   if (!parse_integer(v, index) || index == 0) {
     fail_at_line(path, line,
-                 "'" + std::string(corner) +
-                     "' is not a face corner (v, v/vt, "
+                 quote(corner) +
+                     " is not a face corner (v, v/vt, "
                      "v//vn or v/vt/vn with v a non-zero vertex number)");
   }
   if (index > 0) return index - 1;
@@ -53,7 +53,7 @@ RawMesh read_obj(const std::string& path, const std::string& data, Content conte
         const double value = double_at(tokens[t], path, line);
         if (n == 4 && value != 1.0) {
           fail_at_line(path, line,
-                       "the weight w = " + std::string(tokens[4]) + " is not supported (only 1)");
+                       "the weight w = " + quote(tokens[4]) + " is not supported (only 1)");
         }
       }
       v.lines.push_back(line);

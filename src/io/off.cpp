@@ -56,6 +56,18 @@ RawMesh read_off(const std::string& path, const std::string& data, Content conte
       !parse_integer(tokens[1], header.faces) || header.vertices < 0 || header.faces < 0) {
     fail_at_line(path, counts_line, "malformed header: expected the counts 'vertices faces edges'");
   }
+  // Each vertex and face is a line of at least one byte: a count that the
+  // rest of the file cannot hold fails at once.
+  const auto left = static_cast<std::uint64_t>(data.size() - reader.offset());
+  const auto vertices = static_cast<std::uint64_t>(header.vertices);
+  const auto faces = content == Content::kVertices ? 0 : static_cast<std::uint64_t>(header.faces);
+  if (vertices > left || faces > left - vertices) {
+    fail_at_line(path, counts_line,
+                 "file is truncated or its header is wrong: it declares " +
+                     std::to_string(header.vertices) + " vertices and " +
+                     std::to_string(header.faces) + " faces, one line each, but only " +
+                     std::to_string(left) + " bytes follow");
+  }
 
   // x y z [nx ny nz] [colour: 1 to 4 values] [s t]
   const std::size_t base = 3 + (header.normals ? 3 : 0) + (header.texture ? 2 : 0);

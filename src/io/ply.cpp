@@ -63,6 +63,7 @@ struct Element {
   std::string name;
   std::uint64_t count = 0;
   std::vector<Property> properties;
+  std::size_t line = 0;  // of its "element" line in the header
 };
 
 enum class Encoding { kAscii, kBinaryLittleEndian, kBinaryBigEndian };
@@ -91,7 +92,7 @@ Scalar scalar_at(std::string_view name, const std::string& path, std::size_t lin
   for (const ScalarName& s : kScalars) {
     if (name == s.name) return s.type;
   }
-  fail_at_line(path, line, "malformed header: unknown property type '" + std::string(name) + "'");
+  fail_at_line(path, line, "malformed header: unknown property type " + quote(name));
 }
 
 Header parse_header(const std::string& path, const std::string& data) {
@@ -132,8 +133,8 @@ Header parse_header(const std::string& path, const std::string& data) {
         header.encoding = Encoding::kBinaryBigEndian;
       } else {
         fail_at_line(path, line,
-                     "malformed header: unknown format '" + std::string(tokens[1]) +
-                         "' (expected ascii, binary_little_endian or "
+                     "malformed header: unknown format " + quote(tokens[1]) +
+                         " (expected ascii, binary_little_endian or "
                          "binary_big_endian)");
       }
       has_format = true;
@@ -142,7 +143,8 @@ Header parse_header(const std::string& path, const std::string& data) {
       if (tokens.size() != 3 || !parse_integer(tokens[2], count) || count < 0) {
         fail_at_line(path, line, "malformed header: expected 'element <name> <count>'");
       }
-      header.elements.push_back({std::string(tokens[1]), static_cast<std::uint64_t>(count), {}});
+      header.elements.push_back(
+          {std::string(tokens[1]), static_cast<std::uint64_t>(count), {}, line});
     } else if (key == "property") {
       if (header.elements.empty()) {
         fail_at_line(path, line, "malformed header: 'property' before any 'element'");
@@ -166,11 +168,49 @@ Header parse_header(const std::string& path, const std::string& data) {
       }
       header.elements.back().properties.push_back(property);
     } else {
-      fail_at_line(path, line, "malformed header: unexpected '" + std::string(key) + "'");
+      fail_at_line(path, line, "malformed header: unexpected " + quote(key));
     }
   }
   if (!has_format) fail(path, "malformed header: no 'format' line");
+  // A record without properties takes no bytes: nothing bounds its count.
+  for (const Element& element : header.elements) {
+    if (element.properties.empty() && element.count > 0) {
+      fail_at_line(path, element.line,
+                   "malformed header: element " + quote(element.name) + " declares " +
+                       std::to_string(element.count) + " records but no properties");
+    }
+  }
   return header;
+}
+
+// The fewest bytes a record of `element` takes: its scalars, and the counts
+// of its lists (which may be empty); in ASCII, one byte per line is assumed.
+std::uint64_t min_record_bytes(const Element& element, Encoding encoding) {
+  if (encoding == Encoding::kAscii) return 1;
+  std::uint64_t bytes = 0;
+  for (const Property& property : element.properties)
+    bytes += size_of(property.is_list ? property.count_type : property.type);
+  return bytes;
+}
+
+// Checks every declared count against the bytes that follow the header,
+// before anything is read, so that a count no file could hold fails at once
+// instead of after a walk through its records.
+void check_counts(const std::string& path, const Header& header, std::size_t body_bytes) {
+  std::uint64_t left = body_bytes;
+  for (const Element& element : header.elements) {
+    const std::uint64_t size = min_record_bytes(element, header.encoding);
+    if (element.count > left / size) {
+      const bool ascii = header.encoding == Encoding::kAscii;
+      fail_at_line(path, element.line,
+                   "file is truncated or its header is wrong: it declares " +
+                       std::to_string(element.count) + " " + quote(element.name) +
+                       " records of at least " + std::to_string(size) +
+                       (ascii ? " byte (a line)" : size == 1 ? " byte" : " bytes") + " each, but only " +
+                       std::to_string(left) + " bytes are left for them");
+    }
+    left -= element.count * size;
+  }
 }
 
 std::optional<std::size_t> find_property(const Element& element, const char* name) {
@@ -272,11 +312,11 @@ void read_ascii_body(const std::string& path, const std::string& data, const Hea
     for (std::uint64_t r = 0; r < element.count; ++r) {
       if (!reader.next(tokens)) {
         fail(path, "file is truncated: it ends after " + std::to_string(r) + " of the " +
-                       std::to_string(element.count) + " '" + element.name +
-                       "' records the header declares");
+                       std::to_string(element.count) + " " + quote(element.name) +
+                       " records the header declares");
       }
       const std::size_t line = reader.line();
-      const std::string record = "'" + element.name + "' record " + std::to_string(r + 1);
+      const std::string record = quote(element.name) + " record " + std::to_string(r + 1);
       std::size_t t = 0;
       values.assign(element.properties.size(), 0.0);
       for (std::size_t p = 0; p < element.properties.size(); ++p) {
@@ -378,7 +418,7 @@ void read_binary_body(const std::string& path, const std::string& data, const He
     const bool is_vertex = e == vertex.element;
     const bool is_face = face && e == face->element;
     auto truncated = [&](std::uint64_t record) {
-      fail(path, "file is truncated: it ends inside '" + element.name + "' record " +
+      fail(path, "file is truncated: it ends inside " + quote(element.name) + " record " +
                      std::to_string(record + 1) + " of the " + std::to_string(element.count) +
                      " the header declares");
     };
@@ -409,7 +449,7 @@ void read_binary_body(const std::string& path, const std::string& data, const He
         if (cursor.remaining() < size_of(property.count_type)) truncated(r);
         const double count = cursor.read(property.count_type);
         if (count < 0) {
-          fail(path, "'" + element.name + "' record " + std::to_string(r + 1) +
+          fail(path, quote(element.name) + " record " + std::to_string(r + 1) +
                          " has a negative list length");
         }
         const auto n = static_cast<std::uint64_t>(count);
@@ -449,9 +489,10 @@ RawMesh read_ply(const std::string& path, const std::string& data, Content conte
     face = face_layout(path, header);
     if (!face) fail(path, "no element 'face': the file holds no mesh");
   }
+  const std::size_t body = data.size() - header.body_offset;
+  check_counts(path, header, body);
   RawMesh mesh;
   // Reserve no more than the body could hold, whatever the header claims.
-  const std::size_t body = data.size() - header.body_offset;
   mesh.vertices.points.reserve(
       std::min<std::uint64_t>(header.elements[vertex.element].count, body / 3));
   if (header.encoding == Encoding::kAscii) {

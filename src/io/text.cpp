@@ -5,7 +5,10 @@
 #include <charconv>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace pdd::io {
 
@@ -45,24 +48,52 @@ Format format_of(const std::string& path, const std::vector<Format>& allowed,
   if (extension.empty()) {
     fail(path, "no file extension; a " + what + " file must end in one of " + expected);
   }
-  fail(path, "unknown extension '" + extension + "' for a " + what + " file; expected one of " +
+  fail(path, "unknown extension " + quote(extension) + " for a " + what + " file; expected one of " +
                  expected);
 }
 
 std::string load_file(const std::string& path) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (status.type() == std::filesystem::file_type::not_found) fail(path, "no such file");
-  if (status.type() == std::filesystem::file_type::directory) fail(path, "is a folder, not a file");
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) fail(path, std::string("cannot open: ") + std::strerror(errno));
-  const std::streamoff size = in.tellg();
-  if (size < 0) fail(path, std::string("cannot read: ") + std::strerror(errno));
-  std::string content(static_cast<std::size_t>(size), '\0');
-  in.seekg(0);
-  if (!in.read(content.data(), size))
-    fail(path, std::string("cannot read: ") + std::strerror(errno));
+  // O_NONBLOCK: opening a named pipe would otherwise wait for a writer;
+  // fstat then refuses anything but a regular file before a byte is read.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    if (errno == ENOENT) fail(path, "no such file");
+    fail(path, std::string("cannot open: ") + std::strerror(errno));
+  }
+  struct FdCloser {
+    int fd;
+    ~FdCloser() { ::close(fd); }
+  } closer{fd};
+  struct stat status {};
+  if (::fstat(fd, &status) != 0) fail(path, std::string("cannot read: ") + std::strerror(errno));
+  if (S_ISDIR(status.st_mode)) fail(path, "is a folder, not a file");
+  if (!S_ISREG(status.st_mode))
+    fail(path, std::string("not a regular file (") + file_kind(status.st_mode) + ")");
+  // One byte more than its size, so that the read that meets the end needs no
+  // reallocation; more when the file grows meanwhile.
+  std::string content(static_cast<std::size_t>(status.st_size) + 1, '\0');
+  std::size_t filled = 0;
+  while (true) {
+    if (filled == content.size()) content.resize(2 * content.size());
+    const ssize_t n = ::read(fd, content.data() + filled, content.size() - filled);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) fail(path, std::string("cannot read: ") + std::strerror(errno));
+    if (n == 0) break;
+    filled += static_cast<std::size_t>(n);
+  }
+  content.resize(filled);
   return content;
+}
+
+const char* file_kind(mode_t mode) {
+  if (S_ISREG(mode)) return "a regular file";
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISFIFO(mode)) return "a named pipe";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISLNK(mode)) return "a symbolic link";
+  return "a special file";
 }
 
 void fail(const std::string& path, const std::string& what) {
@@ -116,7 +147,7 @@ bool parse_integer(std::string_view token, std::int64_t& value) {
 double double_at(std::string_view token, const std::string& path, std::size_t line) {
   double value;
   if (!parse_double(token, value)) {
-    fail_at_line(path, line, "'" + std::string(token) + "' is not a number");
+    fail_at_line(path, line, quote(token) + " is not a number");
   }
   return value;
 }
@@ -124,7 +155,7 @@ double double_at(std::string_view token, const std::string& path, std::size_t li
 std::int64_t integer_at(std::string_view token, const std::string& path, std::size_t line) {
   std::int64_t value;
   if (!parse_integer(token, value)) {
-    fail_at_line(path, line, "'" + std::string(token) + "' is not an integer");
+    fail_at_line(path, line, quote(token) + " is not an integer");
   }
   return value;
 }

@@ -4,6 +4,9 @@
 #pragma once
 
 #include <pdd/errors.h>
+#include <sys/types.h>
+
+#include "common/quote.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -22,9 +25,12 @@ enum class Format { kPly, kXyz, kOff, kObj, kVtu, kJson };
 Format format_of(const std::string& path, const std::vector<Format>& allowed,
                  const std::string& what);
 
-// The whole file. Throws InputError when it is missing, a folder or
-// unreadable.
+// The whole file. Throws InputError when it is missing, unreadable or not a
+// regular file (a folder, a named pipe, a device), without waiting on a pipe.
 std::string load_file(const std::string& path);
+
+// What a file of this st_mode is, for messages: "a named pipe", "a folder", ...
+const char* file_kind(mode_t mode);
 
 // "<path>: <what>" and "<path>: line <n>: <what>" as InputError.
 [[noreturn]] void fail(const std::string& path, const std::string& what);

@@ -27,6 +27,106 @@ std::string vector_text(const Vec3& v) {
 
 bool is_finite(const Vec3& v) { return v.allFinite(); }
 
+struct Box {
+  Vec3 lo, hi;
+  double diagonal;  // without overflow while it fits in a double
+};
+
+Box bounding_box(const std::vector<Vec3>& points) {
+  Box box{points[0], points[0], 0};
+  for (const Vec3& p : points) {
+    box.lo = box.lo.cwiseMin(p);
+    box.hi = box.hi.cwiseMax(p);
+  }
+  box.diagonal = (box.hi - box.lo).stableNorm();
+  return box;
+}
+
+// What keeps `points` (at least one, finite, distinct) from bounding a volume
+// that pdd can compute with, phrased to follow "all <n> points ", or "". The
+// extent is judged on the points' own bounding box and principal axes, not
+// on their distance to the origin: a georeferenced scan sits millions of
+// units from it.
+std::string spread_problem(const std::vector<Vec3>& points, const ValidationOptions& options) {
+  const Box box = bounding_box(points);
+  const double diagonal = box.diagonal;
+  const double magnitude = std::max(box.lo.cwiseAbs().maxCoeff(), box.hi.cwiseAbs().maxCoeff());
+  if (!(diagonal <= options.max_extent)) {
+    return "span " + (std::isfinite(diagonal) ? short_number(diagonal) : "more than a double holds") +
+           " (their bounding-box diagonal), more than the " + short_number(options.max_extent) +
+           " pdd computes with; rescale them";
+  }
+  if (diagonal <= options.coincidence_tolerance * magnitude) {
+    return "coincide: their bounding box diagonal, " + short_number(diagonal) +
+           ", is within a relative " + short_number(options.coincidence_tolerance) +
+           " of their coordinates (" + short_number(magnitude) +
+           "), about the rounding of the coordinates";
+  }
+  if (diagonal < options.min_extent) {
+    return "span only " + short_number(diagonal) + " (their bounding-box diagonal), less than the " +
+           short_number(options.min_extent) + " pdd computes with; rescale them";
+  }
+  // The thinnest extents, along the principal axes of the points: an upper
+  // bound of the true thinnest extents, so a set rejected here is truly flat.
+  // Coordinates relative to the box's centre keep the sums exact enough.
+  const Vec3 box_centre = box.lo + 0.5 * (box.hi - box.lo);
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& p : points) mean += p - box_centre;
+  mean /= static_cast<double>(points.size());
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const Vec3& p : points) {
+    const Vec3 q = p - box_centre - mean;
+    covariance += q * q.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
+  auto extent = [&](int axis) {  // eigenvalues ascend
+    const Vec3 direction = eigen.eigenvectors().col(axis);
+    double a = INFINITY;
+    double b = -INFINITY;
+    for (const Vec3& p : points) {
+      const double t = (p - box_centre - mean).dot(direction);
+      a = std::min(a, t);
+      b = std::max(b, t);
+    }
+    return b - a;
+  };
+  const double tolerance = options.flatness_tolerance;
+  const double thickness = extent(0);
+  if (thickness > tolerance * diagonal) return "";
+  const bool on_a_line = extent(1) <= tolerance * diagonal;
+  return std::string("lie ") + (on_a_line ? "on one line" : "in one plane") + " (thickness " +
+         short_number(thickness) + " for a bounding box diagonal of " + short_number(diagonal) +
+         "; relative tolerance " + short_number(tolerance) + "); they cannot bound a volume";
+}
+
+// The points far from the others: more than kOutlierRatio times farther from
+// the points' coordinate-wise median than the median point is; the farthest
+// first.
+std::vector<std::size_t> outliers(const std::vector<Vec3>& points) {
+  constexpr double kOutlierRatio = 1e3;
+  const std::size_t n = points.size();
+  std::vector<double> values(n);
+  auto median = [&] {
+    std::nth_element(values.begin(), values.begin() + n / 2, values.end());
+    return values[n / 2];
+  };
+  Vec3 centre;
+  for (int k = 0; k < 3; ++k) {
+    for (std::size_t i = 0; i < n; ++i) values[i] = points[i][k];
+    centre[k] = median();
+  }
+  std::vector<double> distance(n);
+  for (std::size_t i = 0; i < n; ++i) distance[i] = (points[i] - centre).stableNorm();
+  values = distance;
+  const double typical = median();
+  std::vector<std::size_t> far;
+  for (std::size_t i = 0; i < n; ++i)
+    if (distance[i] > kOutlierRatio * typical) far.push_back(i);
+  std::stable_sort(far.begin(), far.end(),
+                   [&](std::size_t a, std::size_t b) { return distance[a] > distance[b]; });
+  return far;
+}
+
 // Merges exact duplicates in place (the first occurrence stays, with its
 // normal); the report counts them. Sorting copies of the positions (rather
 // than indices into them) keeps the sort cache-friendly on large inputs.
@@ -139,48 +239,29 @@ PointSet io::validate_points_at(PointSet points, const std::string& source,
     fail(source, what + "; at least " + std::to_string(options.min_points) + " are needed");
   }
 
-  // Degenerate spread, relative to the bounding box.
-  Vec3 lo = points.points[0];
-  Vec3 hi = lo;
-  for (const Vec3& p : points.points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const double diagonal = (hi - lo).norm();
-  const double magnitude = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
-  const double tolerance = options.flatness_tolerance;
-  if (diagonal <= tolerance * magnitude) {
-    fail(source, "all " + std::to_string(n) + " points coincide: their bounding box diagonal, " +
-                     short_number(diagonal) + ", is within a relative " + short_number(tolerance) +
-                     " of their coordinates (" + short_number(magnitude) + ")");
-  }
-  // The thinnest extents, along the principal axes of the points: an upper
-  // bound of the true thinnest extents, so a set rejected here is truly flat.
-  Vec3 center = Vec3::Zero();
-  for (const Vec3& p : points.points) center += p;
-  center /= static_cast<double>(n);
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (const Vec3& p : points.points) covariance += (p - center) * (p - center).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
-  auto extent = [&](int axis) {  // eigenvalues ascend
-    const Vec3 direction = eigen.eigenvectors().col(axis);
-    double a = INFINITY;
-    double b = -INFINITY;
-    for (const Vec3& p : points.points) {
-      const double t = (p - center).dot(direction);
-      a = std::min(a, t);
-      b = std::max(b, t);
+  if (const std::string problem = spread_problem(points.points, options); !problem.empty()) {
+    // A few far points can make the rest look flat or the extent overflow:
+    // then they are what is wrong, not the shape.
+    const std::vector<std::size_t> far = outliers(points.points);
+    if (!far.empty() && n - far.size() >= options.min_points) {
+      std::vector<char> is_far(n, 0);
+      for (std::size_t i : far) is_far[i] = 1;
+      std::vector<Vec3> rest;
+      for (std::size_t i = 0; i < n; ++i)
+        if (!is_far[i]) rest.push_back(points.points[i]);
+      if (spread_problem(rest, options).empty()) {
+        const std::size_t farthest = far.front();
+        const std::string which = where(farthest) + " at " + vector_text(points.points[farthest]);
+        fail(source, (far.size() == 1 ? which + " is an outlier"
+                                      : std::to_string(far.size()) +
+                                            " points are outliers, the farthest " + which) +
+                         ": the other " + std::to_string(rest.size()) + " points span " +
+                         short_number(bounding_box(rest).diagonal) + ", all " + std::to_string(n) +
+                         " span " + short_number(bounding_box(points.points).diagonal) +
+                         "; remove " + (far.size() == 1 ? "it" : "them"));
+      }
     }
-    return b - a;
-  };
-  const double thickness = extent(0);
-  if (thickness <= tolerance * diagonal) {
-    const bool on_a_line = extent(1) <= tolerance * diagonal;
-    fail(source, "all " + std::to_string(n) + " points lie " +
-                     (on_a_line ? "on one line" : "in one plane") + " (thickness " +
-                     short_number(thickness) + " for a bounding box diagonal of " +
-                     short_number(diagonal) + "; relative tolerance " + short_number(tolerance) +
-                     "); they cannot bound a volume");
+    fail(source, "all " + std::to_string(n) + " points " + problem);
   }
   return points;
 }

@@ -7,6 +7,7 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "io/formats.h"
 #include "io/text.h"
 
 namespace pdd {
@@ -84,7 +85,7 @@ class XmlText {
 
 void write_domain_vtu(const std::string& path, const TetMesh& mesh, const std::vector<double>& f,
                       const std::vector<DataArray>& point_data,
-                      const std::vector<DataArray>& cell_data) {
+                      const std::vector<DataArray>& cell_data, StagedOutputs* staged) {
   io::format_of(path, {io::Format::kVtu}, "domain");
   const std::size_t n = mesh.vertices.size();
   check_array("f", f, n, "point");
@@ -106,7 +107,7 @@ void write_domain_vtu(const std::string& path, const TetMesh& mesh, const std::v
     }
   }
 
-  write_atomically(path, [&](std::ostream& out) {
+  io::write_output(path, staged, [&](std::ostream& out) {
     XmlText xml(out);
     std::string& s = xml.text();
     s += "<?xml version=\"1.0\"?>\n";

@@ -2,6 +2,7 @@
 // exact point-to-triangle distances to the other mesh through a CGAL AABB tree.
 #include <pdd/compare.h>
 #include <pdd/errors.h>
+#include <pdd/quality.h>
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -117,6 +118,7 @@ double surface_area(const TriangleMesh& mesh) {
 }
 
 void require_area(const TriangleMesh& mesh, const std::string& source) {
+  require_measurable(mesh, source);
   if (!(surface_area(mesh) > 0))
     throw InputError(source + ": the mesh has no area (all " + std::to_string(mesh.faces.size()) +
                      " faces are degenerate)");
@@ -156,7 +158,10 @@ std::vector<Vec3> sample_surface(const TriangleMesh& mesh, std::size_t count, st
 
 SurfaceDistance compare_surfaces(const TriangleMesh& a, const TriangleMesh& b,
                                  const CompareOptions& options) {
-  if (options.samples == 0) throw std::invalid_argument("compare: samples must be positive");
+  if (options.samples == 0 || options.samples > CompareOptions::kMaxSamples)
+    throw std::invalid_argument("compare: samples must be from 1 to " +
+                                std::to_string(CompareOptions::kMaxSamples) + ", got " +
+                                std::to_string(options.samples));
   if (!(options.fscore_threshold >= 0))
     throw std::invalid_argument("compare: the F-score threshold must be non-negative");
   check_surface(a, "compare: mesh A");

@@ -1,7 +1,9 @@
 // The report of `pdd compare` and pdd.compare(): two-sided distances between
 // two meshes, as text or JSON.
+#include <pdd/errors.h>
 #include <pdd/report.h>
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <string>
@@ -82,6 +84,15 @@ std::string text(const Names& args, const SurfaceDistance& d) {
 std::string comparison_report(const std::string& a, const std::string& b,
                               const CompareOptions& options, const SurfaceDistance& distance,
                               bool as_json) {
+  // A NaN or an overflow is never reported as a result.
+  const SurfaceDistance& d = distance;
+  for (const double v : {d.diagonal, d.threshold, d.hausdorff, d.chamfer_l1, d.a_to_b.mean,
+                         d.b_to_a.mean, d.a_to_b.rms, d.b_to_a.rms, d.a_to_b.max, d.b_to_a.max,
+                         d.precision, d.recall, d.fscore})
+    if (!std::isfinite(v))
+      throw InputError(a + ", " + b + ": a distance between the meshes comes out " +
+                       (std::isnan(v) ? "NaN" : "infinite") +
+                       "; their coordinates are out of the range it can be computed in");
   const Names names{a, b, options};
   return as_json ? json(names, distance) : text(names, distance);
 }

@@ -8,6 +8,7 @@
 namespace pdd {
 
 IterationCallback iteration_files(const std::string& folder, bool ascii) {
+  check_output_path(folder, OutputKind::kFolder);
   std::filesystem::create_directories(folder);
   return [folder, ascii](const IterationStats& stats, const Domain& domain,
                          const TriangleMesh& isosurface) {

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "common/quote.h"
+
 namespace pdd {
 namespace detail {
 namespace {
@@ -104,7 +106,7 @@ bool VertexBudget::allows_refining(std::size_t vertices) {
 
 std::size_t parse_memory_size(const std::string& text, const std::string& what) {
   const auto bad = [&](const std::string& why) {
-    return InputError(what + ": '" + text + "' is not a memory size (" + why +
+    return InputError(what + ": " + quote(text) + " is not a memory size (" + why +
                       "; e.g. 8G, 500M, 1.5GiB)");
   };
   const char* begin = text.c_str();
@@ -129,7 +131,7 @@ std::size_t parse_memory_size(const std::string& text, const std::string& what) 
       if (bytes > 9.2e18) throw bad("too large");
       return static_cast<std::size_t>(bytes);
     }
-  throw bad("unknown unit '" + std::string(end) + "'");
+  throw bad("unknown unit " + quote(end));
 }
 
 }  // namespace pdd

@@ -7,28 +7,12 @@
 #include <cstdlib>
 #include <limits>
 
+#include "common/quote.h"
+
 namespace pdd {
 namespace {
 
 using Kind = OptionSpec::Kind;
-
-// The value as it goes into a message: non-printable bytes escaped, long
-// values shortened, so that an error line stays one readable line.
-std::string quoted(const std::string& value) {
-  std::string out = "'";
-  for (std::size_t i = 0; i < value.size() && i < 40; ++i) {
-    const unsigned char c = static_cast<unsigned char>(value[i]);
-    if (c < 0x20 || c >= 0x7f || c == '\'' || c == '\\') {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\x%02x", c);
-      out += escaped;
-    } else {
-      out += static_cast<char>(c);
-    }
-  }
-  if (value.size() > 40) out += "...";
-  return out + "'";
-}
 
 std::string text(double x) {
   char buffer[32];
@@ -38,7 +22,7 @@ std::string text(double x) {
 
 [[noreturn]] void reject(const std::string& name, const std::string& what,
                          const std::string& value) {
-  throw InputError("--" + name + ": must be " + what + ", got " + quoted(value));
+  throw InputError("--" + name + ": must be " + what + ", got " + quote(value));
 }
 
 using DoubleField = double& (*)(ReconstructOptions&);
@@ -222,22 +206,23 @@ std::vector<OptionSpec> make_specs() {
       "degrees",
       [](ReconstructOptions& o) -> double& { return o.cleanup_options.max_dihedral_degrees; },
       0, true, 89.9));
-  s.push_back(integer("threads", "Worker threads (0: all cores)",
-                      [](ReconstructOptions& o) -> int& { return o.threads; }, 0, 1024));
+  s.push_back(integer("threads",
+                      "Worker threads (0: all cores; at most 4 times the hardware threads)",
+                      [](ReconstructOptions& o) -> int& { return o.threads; }, 0, max_threads()));
   s.push_back(number(
       "enlarge-ratio",
       "Radius of the initial domain sphere over that of the points' bounding sphere (§3.2)",
       [](ReconstructOptions& o) -> double& { return o.domain.enlarge_ratio; }, 1, false,
-      HUGE_VAL));
+      DomainOptions::kMaxEnlargeRatio));
   s.push_back(integer("sphere-points", "Points spread on the initial domain sphere (§3.2)",
                       [](ReconstructOptions& o) -> int& { return o.domain.sphere_points; }, 4,
                       1000000));
   s.push_back(number(
       "radius-edge",
       "Bound on the circumradius-to-shortest-edge ratio of the initial Delaunay refinement "
-      "(§3.2)",
-      [](ReconstructOptions& o) -> double& { return o.domain.radius_edge_bound; }, 0, false,
-      HUGE_VAL));
+      "(§3.2); at least 1, below which the refinement does not end",
+      [](ReconstructOptions& o) -> double& { return o.domain.radius_edge_bound; },
+      DomainOptions::kMinRadiusEdgeBound, true, HUGE_VAL));
   s.push_back(number("lambda-asap",
                      "Weight λa of the as-similar-as-possible term (§3.3, Eq. 1)",
                      [](ReconstructOptions& o) -> double& { return o.optimizer.lambda_asap; },
@@ -280,7 +265,7 @@ void set_reconstruct_option(ReconstructOptions& options, const std::string& name
     if (c == '_') c = '-';
   for (const OptionSpec& spec : reconstruct_option_specs())
     if (spec.name == dashed) return spec.set(options, value);
-  throw InputError("unknown option " + quoted(name));
+  throw InputError("unknown option " + quote(name));
 }
 
 }  // namespace pdd

@@ -1,7 +1,9 @@
 // The report of `pdd quality` and pdd.quality(): triangle quality and surface
 // checks of a mesh, as text or JSON.
+#include <pdd/errors.h>
 #include <pdd/report.h>
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <string>
@@ -99,7 +101,14 @@ std::string text(const std::string& path, const TriangleMesh& mesh, const Triang
 }  // namespace
 
 std::string quality_report(const std::string& file, const TriangleMesh& mesh, bool as_json) {
+  require_measurable(mesh, file);
   const TriangleQuality q = triangle_quality(mesh);
+  // A NaN or an overflow is never reported as a result.
+  for (const double v : {q.min_angle, q.mean_min_angle, q.max_angle})
+    if (!std::isfinite(v))
+      throw InputError(file + ": the triangles' angles come out " +
+                       (std::isnan(v) ? "NaN" : "infinite") +
+                       "; the coordinates are out of the range they can be computed in");
   const SurfaceTopology s = surface_topology(mesh);
   return as_json ? json(file, mesh, q, s) : text(file, mesh, q, s);
 }

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <optional>
 #include <random>
+#include <thread>
 
 namespace pdd {
 
@@ -52,6 +53,58 @@ class EigenThreads {
 
 // Thrown by Run::report when the callback asks to stop; caught in reconstruct().
 struct Cancelled {};
+
+// The centre of the points' bounding box (0.5 lo + 0.5 hi cannot overflow).
+Vec3 bounding_box_centre(const std::vector<Vec3>& points) {
+  if (points.empty()) return Vec3::Zero();
+  Vec3 lo = points[0], hi = points[0];
+  for (const Vec3& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return 0.5 * lo + 0.5 * hi;
+}
+
+// A caller's sizing field, given the isofacets of a run in coordinates
+// relative to `centre` where they are in the caller's.
+class TranslatedSizing : public SizingField {
+ public:
+  TranslatedSizing(std::shared_ptr<const SizingField> inner, const Vec3& centre)
+      : inner_(std::move(inner)), centre_(centre) {}
+  std::vector<double> target_areas(const Domain& domain,
+                                   const std::vector<Isofacet>& facets) const override {
+    std::vector<Isofacet> moved = facets;
+    for (Isofacet& f : moved) {
+      for (Vec3& c : f.corners) c += centre_;
+      f.centroid += centre_;
+    }
+    return inner_->target_areas(domain, moved);
+  }
+
+ private:
+  std::shared_ptr<const SizingField> inner_;
+  Vec3 centre_;
+};
+
+// The options of a run in coordinates relative to `centre`: the caller's
+// sizing field and iteration callback see the caller's coordinates.
+ReconstructOptions relative_to(const ReconstructOptions& options, const Vec3& centre) {
+  ReconstructOptions relative = options;
+  if (options.custom_sizing)
+    relative.custom_sizing = std::make_shared<TranslatedSizing>(options.custom_sizing, centre);
+  if (options.on_iteration) {
+    relative.on_iteration = [inner = options.on_iteration, centre](
+                                const IterationStats& stats, const Domain& domain,
+                                const TriangleMesh& isosurface) {
+      Domain moved = domain;
+      moved.translate(centre);
+      TriangleMesh mesh = isosurface;
+      for (Vec3& v : mesh.vertices) v += centre;
+      inner(stats, moved, mesh);
+    };
+  }
+  return relative;
+}
 
 std::shared_ptr<const SizingField> make_sizing(const PointSet& points,
                                                const ReconstructOptions& options) {
@@ -344,6 +397,10 @@ std::string to_string(Orientation orientation) {
   return "unknown";
 }
 
+int max_threads() {
+  return 4 * static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
 Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
   if (options.max_iterations < 1)
     throw InputError("reconstruct: at least one iteration is needed, got " +
@@ -352,8 +409,9 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
     throw InputError("reconstruct: optimizer rounds must be >= 0, got " +
                      std::to_string(options.optimizer_rounds) + " and " +
                      std::to_string(options.optimizer_rounds_before_refining));
-  if (options.threads < 0)
-    throw InputError("reconstruct: threads must be >= 0, got " + std::to_string(options.threads));
+  if (options.threads < 0 || options.threads > max_threads())
+    throw InputError("reconstruct: threads must be from 0 to " + std::to_string(max_threads()) +
+                     ", got " + std::to_string(options.threads));
   if (!(options.min_component_edges >= 0) || !std::isfinite(options.min_component_edges))
     throw InputError("reconstruct: the smallest component size must be >= 0 edge lengths, got " +
                      std::to_string(options.min_component_edges));
@@ -378,13 +436,21 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
   if (input.normals.size() != input.points.size())
     throw InputError("reconstruct: " + std::to_string(input.normals.size()) + " normals for " +
                      std::to_string(input.points.size()) + " points");
+  // The run works in coordinates relative to the input's bounding-box centre,
+  // its scale untouched (absolute options such as the target edge keep their
+  // meaning): far from the origin, as georeferenced scans are, it keeps the
+  // precision it has at the origin, and a translated input gives the same
+  // output, translated, up to rounding.
+  const Vec3 centre = bounding_box_centre(input.points);
+  PointSet relative = input;
+  for (Vec3& p : relative.points) p -= centre;
+  ReconstructOptions resolved = relative_to(options, centre);
   // The input's noise for SSD's automatic value weight, once for all the solves.
-  ReconstructOptions resolved = options;
   SsdOptions& ssd = resolved.solver.ssd;
   if (resolved.solver.kind == SolverKind::kSsd && ssd.alpha == 0 && ssd.noise < 0)
-    ssd.noise = estimate_noise(input);
+    ssd.noise = estimate_noise(relative);
   const double seconds_before = seconds_since(start);
-  Run run(input, resolved);
+  Run run(relative, resolved);
   try {
     Result result = [&] {
       switch (resolved.strategy) {
@@ -395,6 +461,8 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
       }
       throw InputError("reconstruct: unknown domain strategy");
     }();
+    for (Vec3& v : result.mesh.vertices) v += centre;
+    result.domain.translate(centre);
     result.noise = std::max(0.0, ssd.noise);
     result.seconds += seconds_before;
     result.normals = normals;
