@@ -1,6 +1,7 @@
 // pdd: surface reconstruction by progressive discrete domains.
 // A thin client of the library: parses options, calls pdd::, reports errors.
 #include "commands.h"
+#include "signals.h"
 
 #include <pdd/errors.h>
 
@@ -14,6 +15,7 @@ int main(int argc, char** argv) {
   // whose pages the kernel zeroes on first touch (a third of the run was
   // system time on a 20k-point scan); keeping freed memory in the heap for
   // reuse halves that (docs/benchmarks.md, "Where the time goes").
+  pdd::cli::start_signal_watcher(argv);
   mallopt(M_MMAP_THRESHOLD, 1 << 30);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
   CLI::App app{"pdd: closed triangle meshes from point clouds by progressive discrete domains\n"
@@ -33,6 +35,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     std::cerr << "pdd: error: " << e.what() << " (see pdd --help)\n";
     return 2;
+  } catch (const pdd::cli::Interrupted&) {
+    std::cerr << "pdd: interrupted\n";
+    return pdd::cli::cancel_exit_code();
   } catch (const pdd::InputError& e) {
     std::cerr << "pdd: error: " << e.what() << "\n";
     return 2;

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "signals.h"
 #include "table_options.h"
 
 namespace pdd::cli {
@@ -40,11 +41,14 @@ struct ReconstructArgs {
   bool quiet = false;  // no progress line, no table
 };
 
-// The progress line on stderr: rewritten in place on a terminal, one plain
+// The progress callback: stops the run once SIGINT or SIGTERM came, and unless
+// `quiet` prints the progress line on stderr: rewritten in place on a terminal, one plain
 // line per stage otherwise.
-ProgressCallback progress_printer() {
+ProgressCallback progress_printer(bool quiet) {
   const bool terminal = ::isatty(STDERR_FILENO);
-  return [terminal](const Progress& p) {
+  return [terminal, quiet](const Progress& p) {
+    if (cancel_requested()) return false;
+    if (quiet) return true;
     char line[160];
     std::snprintf(line, sizeof line, "pdd: %-10s iteration %2d  %9zu vertices  %7.1f s",
                   p.stage.c_str(), p.iteration, p.vertices, p.elapsed_seconds);
@@ -75,10 +79,11 @@ void reconstruct(ReconstructArgs& args) {
   }
   args.options.source = args.input;
 
-  if (!args.quiet) args.options.progress = progress_printer();
+  args.options.progress = progress_printer(args.quiet);
   if (!args.iterations_dir.empty())
     args.options.on_iteration = iteration_files(args.iterations_dir, args.ascii);
   const Result result = pdd::reconstruct(points, args.options);
+  if (result.cancelled) throw Interrupted{};
   if (!args.quiet && ::isatty(STDERR_FILENO)) std::cerr << "\n";
   for (const std::string& note : {normals_note(result), memory_budget_note(result)})
     if (!note.empty()) std::cerr << "pdd: " << note << "\n";
@@ -86,7 +91,9 @@ void reconstruct(ReconstructArgs& args) {
     throw std::runtime_error("reconstruct: " + args.input +
                              ": the isosurface is empty (the solver found no surface)");
 
-  // All outputs or none: each is written to a temporary, then all are renamed.
+  // All outputs or none: each is written to a temporary, then all are renamed
+  // (unless a signal came meanwhile: the temporaries then go with `outputs`).
+  begin_outputs();
   StagedOutputs outputs;
   write_mesh(args.output, result.mesh, {args.ascii, &outputs});
   if (!args.domain_output.empty())
@@ -96,6 +103,7 @@ void reconstruct(ReconstructArgs& args) {
     const std::string json = statistics_json(result, args.options);
     outputs.add(args.stats_output, [&](std::ostream& out) { out << json; });
   }
+  if (cancel_requested()) throw Interrupted{};
   outputs.commit();
   if (!args.quiet) std::cout << statistics_table(result);
   std::cout << "pdd: wrote " << args.output << " (" << result.mesh.faces.size() << " triangles, "

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -143,6 +144,24 @@ TEST_F(CliTest, PointsWithoutNormalsGetThemAndSaySo) {
   const PointSet with = read_points(path("n.ply"));
   ASSERT_EQ(with.normals.size(), bare.size());
   for (std::size_t i = 0; i < with.size(); ++i) EXPECT_GT(with.normals[i].dot(with.points[i]), 0.99);
+}
+
+TEST_F(CliTest, SignalsCancelTheRunAndLeaveNoOutput) {
+  write_points(path("in.xyz"), test::sample_sphere(20000));
+  // SIGINT during the multigrid run, SIGTERM during CHOLMOD's (METIS's) factorizations;
+  // `timeout` sends it after 1.5 s and returns pdd's own exit code, and a second
+  // `timeout` kills a run that would hang instead.
+  for (const auto& [signal, linear, code] : {std::tuple("INT", "multigrid", 130),
+                                             std::tuple("TERM", "cholmod", 143)}) {
+    const Outcome run = this->run(
+        "timeout", std::string("-s KILL 60 timeout --preserve-status -s ") + signal + " 1.5 '" +
+                       PDD_BINARY + "' reconstruct " + quoted_path("in.xyz") + " -o " +
+                       quoted_path("out.ply") + " --stats " + quoted_path("out.json") +
+                       " --target-edge 0.012 --linear " + linear + " --quiet");
+    EXPECT_EQ(run.code, code) << signal << ": " << run.err;
+    EXPECT_NE(run.err.find("pdd: interrupted"), std::string::npos) << run.err;
+    EXPECT_EQ(entries(), std::vector<std::string>{"in.xyz"}) << signal;
+  }
 }
 
 TEST_F(CliTest, BadOutputIsRefusedBeforeReading) {
