@@ -399,3 +399,29 @@ TEST(Pipeline, RejectsBadOptions) {
 
 }  // namespace
 }  // namespace pdd
+
+namespace pdd {
+namespace {
+
+TEST(Pipeline, TheDefaultSizingStaysInProportionToTheInput) {
+  // 40 points on a sphere: the default target (0.7 % of the diagonal) would give
+  // about 30k vertices; the run keeps to 60 triangles per point plus 5000.
+  const PointSet few = test::sample_sphere(40);
+  const Result r = reconstruct(few);
+  EXPECT_TRUE(r.budget.limited_by_input);
+  EXPECT_GT(r.budget.coarsening, 2);
+  EXPECT_LT(r.mesh.faces.size(), 1.2 * (60 * 40 + 5000));
+  EXPECT_TRUE(surface_topology(r.mesh).closed);
+  EXPECT_NE(memory_budget_note(r).find("out of proportion to the input"), std::string::npos);
+
+  // A sizing the user asks for is theirs.
+  ReconstructOptions asked;
+  asked.target_edge_length = 0.05;
+  const Result fine = reconstruct(few, asked);
+  EXPECT_EQ(fine.budget.input_vertices, 0u);
+  EXPECT_FALSE(fine.budget.limited_by_input);
+  EXPECT_GT(fine.mesh.faces.size(), 2 * r.mesh.faces.size());
+}
+
+}  // namespace
+}  // namespace pdd

@@ -152,6 +152,10 @@ struct MemoryBudget {
   std::size_t predicted_vertices = 0;   // the largest final domain predicted at the asked sizing
   double coarsening = 1;                // factor of the target areas (1: none; edges: its root)
   bool refinement_stopped = false;      // the domain reached 3/4 of the vertex budget
+  // With the default sizing, the domain also stays in proportion to the input: at most
+  // about 60 output triangles per point (plus 5000), whatever the memory allows.
+  std::size_t input_vertices = 0;       // that cap in domain vertices (0: none, a sizing was asked)
+  bool limited_by_input = false;        // the vertex budget is that cap, not the memory's
 };
 
 // Parses a memory size: a positive number of bytes with an optional unit

@@ -18,9 +18,11 @@ std::size_t default_memory_budget();
 
 class VertexBudget {
  public:
-  // `bytes` (0: default_memory_budget()) for a run on `num_points` samples.
-  // InputError when the budget cannot hold the input and a minimal domain.
-  VertexBudget(std::size_t bytes, std::size_t num_points);
+  // `bytes` (0: default_memory_budget()) for a run on `num_points` samples;
+  // `in_proportion`: the sizing is the default one, so the domain is also kept
+  // in proportion to the input (MemoryBudget::input_vertices). InputError when
+  // the budget cannot hold the input and a minimal domain.
+  VertexBudget(std::size_t bytes, std::size_t num_points, bool in_proportion);
 
   // The final domain that the current isosurface predicts at `sizing`'s
   // targets (`stats`: its isofacets against them); when it exceeds the

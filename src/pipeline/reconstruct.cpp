@@ -129,7 +129,9 @@ class Run {
       : points_(points),
         options_(options),
         solver_(make_solver(options.solver)),
-        budget_(options.max_memory, points.size()),
+        budget_(options.max_memory, points.size(),
+                options.sizing == SizingKind::kUniform && !options.custom_sizing &&
+                    options.target_area <= 0 && options.target_edge_length <= 0),
         rng_(options.seed),
         start_(Clock::now()) {}
 

@@ -42,6 +42,8 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
       << ", \"predicted_vertices\": " << result.budget.predicted_vertices
       << ", \"coarsening\": " << number(result.budget.coarsening)
       << ", \"refinement_stopped\": " << (result.budget.refinement_stopped ? "true" : "false")
+      << ", \"input_vertices\": " << result.budget.input_vertices
+      << ", \"limited_by_input\": " << (result.budget.limited_by_input ? "true" : "false")
       << "},\n"
       << "  \"iterations\": [";
   for (std::size_t i = 0; i < result.iterations.size(); ++i) {
@@ -136,6 +138,14 @@ std::string memory_budget_note(const Result& result) {
   const MemoryBudget& b = result.budget;
   char line[320];
   const double mb = static_cast<double>(b.bytes) / (1 << 20);
+  if (b.limited_by_input && (b.coarsening > 1 || b.refinement_stopped)) {
+    std::snprintf(line, sizeof line,
+                  "the default sizing would give a domain of %zu vertices, out of proportion to "
+                  "the input: kept to about %zu (sizing coarsened %.3gx in area); --target-edge "
+                  "asks for a finer mesh",
+                  b.predicted_vertices, b.vertices, b.coarsening);
+    return line;
+  }
   if (b.coarsening > 1) {
     std::snprintf(line, sizeof line,
                   "memory budget %.0f MB (about %zu domain vertices; --max-memory): the sizing "
