@@ -122,7 +122,8 @@ void reconstruct(ReconstructArgs& args) {
 void add_reconstruct_command(CLI::App& app) {
   auto args = std::make_shared<ReconstructArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "reconstruct", "Reconstruct a closed triangle mesh from a point set with normals");
+      "reconstruct",
+      "Reconstruct a closed triangle mesh from a point set (normals estimated when it has none)");
   cmd->add_option("INPUT", args->input, "Point set: .ply .xyz .pwn .xyzn .off .obj")->required();
   cmd->add_option("-o,--output", args->output, "Output mesh: .ply .off .obj")->required();
   // The options that shape the run: the library's table, shared with the Python module.
