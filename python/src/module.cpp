@@ -82,14 +82,7 @@ std::string compare_json(const py::handle& a_vertices, const py::handle& a_faces
   CompareOptions options;
   options.samples = samples;
   options.fscore_threshold = fscore_threshold;
-  options.seed = seed;
-  if (samples < 1 || samples > CompareOptions::kMaxSamples)
-    throw InputError("samples: must be an integer from 1 to " +
-                     std::to_string(CompareOptions::kMaxSamples) + ", got " +
-                     std::to_string(samples));
-  if (!(fscore_threshold >= 0) || !std::isfinite(fscore_threshold))
-    throw InputError("fscore_threshold: must be a number >= 0, got " +
-                     std::to_string(fscore_threshold));
+  options.seed = seed;  // compare_surfaces checks the options (std::invalid_argument: ValueError)
   py::gil_scoped_release release;
   return comparison_report("a", "b", options, compare_surfaces(a, b, options), true);
 }

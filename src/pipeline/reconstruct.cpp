@@ -5,6 +5,7 @@
 #include <pdd/quality.h>
 #include <pdd/refine.h>
 
+#include "common/enum_names.h"
 #include "pipeline/memory_budget.h"
 #include "pipeline/normals_step.h"
 #include "pipeline/octree_domain.h"
@@ -24,11 +25,6 @@
 namespace pdd {
 
 namespace {
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
 
 using Clock = std::chrono::steady_clock;
 
@@ -341,63 +337,40 @@ class Run {
 
 }  // namespace
 
-DomainStrategy parse_domain_strategy(const std::string& name) {
-  const std::string s = lower(name);
-  if (s == "progressive") return DomainStrategy::kProgressive;
-  if (s == "direct") return DomainStrategy::kDirect;
-  if (s == "input") return DomainStrategy::kInput;
-  if (s == "octree") return DomainStrategy::kOctree;
-  throw InputError("unknown domain strategy '" + name + "' (progressive, direct, input, octree)");
-}
+namespace {
 
-std::string to_string(DomainStrategy strategy) {
-  switch (strategy) {
-    case DomainStrategy::kProgressive: return "progressive";
-    case DomainStrategy::kDirect: return "direct";
-    case DomainStrategy::kInput: return "input";
-    case DomainStrategy::kOctree: return "octree";
-  }
-  return "?";
+constexpr EnumNames<DomainStrategy> kStrategies[] = {{DomainStrategy::kProgressive, "progressive"},
+                                                     {DomainStrategy::kDirect, "direct"},
+                                                     {DomainStrategy::kInput, "input"},
+                                                     {DomainStrategy::kOctree, "octree"}};
+constexpr EnumNames<SizingKind> kSizings[] = {{SizingKind::kUniform, "uniform"},
+                                              {SizingKind::kAdaptive, "adaptive"}};
+constexpr EnumNames<NormalsMode> kNormalsModes[] = {{NormalsMode::kKeep, "keep"},
+                                                    {NormalsMode::kOrient, "orient"},
+                                                    {NormalsMode::kEstimate, "estimate"}};
+constexpr EnumNames<Orientation> kOrientations[] = {{Orientation::kMst, "mst"},
+                                                    {Orientation::kSpectral, "spectral"}};
+
+}  // namespace
+
+DomainStrategy parse_domain_strategy(const std::string& name) {
+  return parse_enum(name, kStrategies, "domain strategy");
 }
+std::string to_string(DomainStrategy strategy) { return enum_name(strategy, kStrategies); }
 
 SizingKind parse_sizing_kind(const std::string& name) {
-  const std::string s = lower(name);
-  if (s == "uniform") return SizingKind::kUniform;
-  if (s == "adaptive") return SizingKind::kAdaptive;
-  throw InputError("unknown sizing '" + name + "' (uniform, adaptive)");
+  return parse_enum(name, kSizings, "sizing");
 }
 
 NormalsMode parse_normals_mode(const std::string& name) {
-  const std::string s = lower(name);
-  if (s == "keep") return NormalsMode::kKeep;
-  if (s == "orient") return NormalsMode::kOrient;
-  if (s == "estimate") return NormalsMode::kEstimate;
-  throw InputError("unknown normals mode '" + name + "' (keep, orient, estimate)");
+  return parse_enum(name, kNormalsModes, "normals mode");
 }
-
-std::string to_string(NormalsMode mode) {
-  switch (mode) {
-    case NormalsMode::kKeep: return "keep";
-    case NormalsMode::kOrient: return "orient";
-    case NormalsMode::kEstimate: return "estimate";
-  }
-  return "unknown";
-}
+std::string to_string(NormalsMode mode) { return enum_name(mode, kNormalsModes); }
 
 Orientation parse_orientation(const std::string& name) {
-  const std::string s = lower(name);
-  if (s == "mst") return Orientation::kMst;
-  if (s == "spectral") return Orientation::kSpectral;
-  throw InputError("unknown orientation '" + name + "' (mst, spectral)");
+  return parse_enum(name, kOrientations, "orientation");
 }
-
-std::string to_string(Orientation orientation) {
-  switch (orientation) {
-    case Orientation::kMst: return "mst";
-    case Orientation::kSpectral: return "spectral";
-  }
-  return "unknown";
-}
+std::string to_string(Orientation orientation) { return enum_name(orientation, kOrientations); }
 
 int max_threads() {
   return 4 * static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

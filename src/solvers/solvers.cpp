@@ -2,24 +2,33 @@
 #include <pdd/errors.h>
 #include <pdd/solvers.h>
 
+#include "common/enum_names.h"
 #include "solvers/kinds.h"
 
-#include <algorithm>
-#include <cctype>
 
 namespace pdd {
 
 ImplicitSolver::~ImplicitSolver() = default;
 
+namespace {
+
+constexpr EnumNames<SolverKind> kSolvers[] = {{SolverKind::kPoisson, "poisson"},
+                                              {SolverKind::kSsd, "ssd"},
+                                              {SolverKind::kSpectral, "spectral"}};
+constexpr EnumNames<LinearMethod> kLinearMethods[] = {{LinearMethod::kMultigrid, "multigrid"},
+                                                      {LinearMethod::kCholmod, "cholmod"}};
+
+}  // namespace
+
 SolverKind parse_solver_kind(const std::string& name) {
-  std::string lower = name;
-  std::transform(lower.begin(), lower.end(), lower.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (lower == "poisson") return SolverKind::kPoisson;
-  if (lower == "ssd") return SolverKind::kSsd;
-  if (lower == "spectral") return SolverKind::kSpectral;
-  throw InputError("unknown solver \"" + name + "\" (expected poisson, ssd or spectral)");
+  return parse_enum(name, kSolvers, "solver");
 }
+std::string to_string(SolverKind kind) { return enum_name(kind, kSolvers); }
+
+LinearMethod parse_linear_method(const std::string& name) {
+  return parse_enum(name, kLinearMethods, "linear solver");
+}
+std::string to_string(LinearMethod method) { return enum_name(method, kLinearMethods); }
 
 std::string normals_requirement(SolverKind kind) {
   switch (kind) {
@@ -28,32 +37,6 @@ std::string normals_requirement(SolverKind kind) {
     case SolverKind::kSsd: break;
   }
   return "the SSD solver fits the gradient of f to oriented normals (Eq. 15)";
-}
-
-LinearMethod parse_linear_method(const std::string& name) {
-  std::string lower = name;
-  std::transform(lower.begin(), lower.end(), lower.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (lower == "multigrid") return LinearMethod::kMultigrid;
-  if (lower == "cholmod") return LinearMethod::kCholmod;
-  throw InputError("unknown linear solver \"" + name + "\" (expected multigrid or cholmod)");
-}
-
-std::string to_string(LinearMethod method) {
-  switch (method) {
-    case LinearMethod::kMultigrid: return "multigrid";
-    case LinearMethod::kCholmod: return "cholmod";
-  }
-  return "unknown";
-}
-
-std::string to_string(SolverKind kind) {
-  switch (kind) {
-    case SolverKind::kPoisson: return "poisson";
-    case SolverKind::kSsd: return "ssd";
-    case SolverKind::kSpectral: return "spectral";
-  }
-  return "unknown";
 }
 
 std::unique_ptr<ImplicitSolver> make_solver(const SolverOptions& options) {
