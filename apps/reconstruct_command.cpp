@@ -85,7 +85,8 @@ void reconstruct(ReconstructArgs& args) {
   const Result result = pdd::reconstruct(points, args.options);
   if (result.cancelled) throw Interrupted{};
   if (!args.quiet && ::isatty(STDERR_FILENO)) std::cerr << "\n";
-  for (const std::string& note : {normals_note(result), memory_budget_note(result)})
+  for (const std::string& note : {outliers_note(result), normals_note(result),
+                                  memory_budget_note(result), trim_note(result)})
     if (!note.empty()) std::cerr << "pdd: " << note << "\n";
   if (result.mesh.faces.empty())
     throw std::runtime_error("reconstruct: " + args.input +
@@ -110,7 +111,8 @@ void reconstruct(ReconstructArgs& args) {
             << result.mesh.vertices.size() << " vertices";
   const IterationStats& last = result.iterations.back();
   for (const auto& [r, kind] : {std::pair(last.small_components, "small"),
-                                std::pair(last.open_components, "open")})
+                                std::pair(last.open_components, "open"),
+                                std::pair(last.unsupported_components, "unsupported")})
     if (r.components > 0)
       std::cout << "; " << r.components << " " << kind << " component"
                 << (r.components == 1 ? "" : "s") << " of " << r.faces << " triangles removed";

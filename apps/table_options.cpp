@@ -20,6 +20,7 @@ void add_table_options(CLI::App* cmd, const std::shared_ptr<OptionValues>& value
       case OptionSpec::Kind::kInteger: option->type_name("INT"); break;
       case OptionSpec::Kind::kSeed: option->type_name("UINT"); break;
       case OptionSpec::Kind::kSize: option->type_name("SIZE"); break;
+      case OptionSpec::Kind::kText: option->type_name("TEXT"); break;
       case OptionSpec::Kind::kFlag: break;
     }
     if (!spec.default_text.empty()) option->default_str(spec.default_text);

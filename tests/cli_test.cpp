@@ -6,6 +6,7 @@
 #include <pdd/quality.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -416,6 +417,50 @@ TEST_F(CliTest, GeoreferencedCoordinatesAreAccepted) {
     EXPECT_NEAR(v.x(), 5e5, 2);
     EXPECT_NEAR(v.y(), 5e6, 2);
   }
+}
+
+TEST_F(CliTest, ColoursTrimAndOutliersOnTheCommandLine) {
+  PointSet sphere = test::sample_sphere(1500);
+  Attribute red{"red", "uchar", {}}, green{"green", "uchar", {}}, blue{"blue", "uchar", {}};
+  for (const Vec3& p : sphere.points) {
+    red.values.push_back(std::round(127.5 * (p.z() + 1)));
+    green.values.push_back(10);
+    blue.values.push_back(20);
+  }
+  sphere.attributes = {red, green, blue};
+  write_points(path("c.ply"), sphere);
+  const Outcome run = pdd("reconstruct " + quoted_path("c.ply") + " -o " + quoted_path("out.ply") +
+                          " --quiet --target-edge 0.15 --stats " + quoted_path("s.json"));
+  ASSERT_EQ(run.code, 0) << run.err;
+  const TriangleMesh mesh = read_mesh(path("out.ply"));
+  ASSERT_EQ(mesh.attributes.size(), 3u);
+  EXPECT_EQ(mesh.attributes[0].name, "red");
+  EXPECT_EQ(mesh.attributes[0].type, "uchar");
+  EXPECT_EQ(mesh.attributes[1].values[0], 10);
+  const std::string stats = slurp(path("s.json"));
+  EXPECT_NE(stats.find("\"attributes\": [\"red\", \"green\", \"blue\"]"), std::string::npos);
+  EXPECT_NE(stats.find("\"outliers\": {\"ratio\": 3"), std::string::npos) << stats;
+  EXPECT_NE(stats.find("\"trim\": {\"trimmed\": false"), std::string::npos) << stats;
+
+  // Bad values: one line, exit 2, no output.
+  fs::remove(path("out.ply"));
+  fs::remove(path("s.json"));
+  const std::string again = "reconstruct " + quoted_path("c.ply") + " -o " + quoted_path("out.ply");
+  expect_refused({{again + " --trim -1", "--trim: must be a number >= 0 and <= 100, got '-1'"},
+                  {again + " --trim 101", "--trim: must be"},
+                  {again + " --trim-holes x", "--trim-holes: must be"},
+                  {again + " --outliers -3", "--outliers: must be"},
+                  {again + " --attributes 'red;blue'", "--attributes: must be colors, all, none"},
+                  {again + " --attributes intensity",
+                   "the points have no property 'intensity' (they have red, green, blue)"}});
+  write_file("bad.ply",
+             "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+             "property float z\nproperty float red\nproperty float green\nproperty float blue\n"
+             "end_header\n0 0 0 0 0 0\n1 0 0 0 0 0\n0 1 0 2 0 0\n0 0 1 0 0 0\n");
+  expect_refused({{"reconstruct " + quoted_path("bad.ply") + " -o " + quoted_path("out.ply"),
+                   "line 13 (point 3): the colour property 'red' is 2, outside 0-1"}});
+  EXPECT_FALSE(fs::exists(path("out.ply")));
+  EXPECT_FALSE(fs::exists(path("s.json")));
 }
 
 }  // namespace

@@ -884,5 +884,110 @@ TEST_F(IoTest, WritesTheDomainAsVtu) {
   EXPECT_EQ(entries(), std::vector<std::string>{"d.vtu"});
 }
 
+// ------------------------------------------------------------ attributes
+
+// A tetrahedron's mesh with a colour (red, green, blue as `type`) and two other properties.
+TriangleMesh coloured_tetrahedron(const std::string& type) {
+  TriangleMesh m = awkward_tetrahedron();
+  const double top = type == "uchar" ? 255 : 1;
+  m.attributes = {{"red", type, {0, top, top / 5, top}},
+                  {"green", type, {top, 0, top / 5, top}},
+                  {"blue", type, {0, 0, top, top}},
+                  {"intensity", "float", {0.5, -1.25, 3, 1e-3}},
+                  {"segment_index", "int", {0, 7, -3, 2000000000}}};
+  return m;
+}
+
+TEST_F(IoTest, PlyRoundTripsKeepColoursAndOtherProperties) {
+  for (const std::string type : {"uchar", "float", "double"})
+    for (const bool ascii : {false, true}) {
+      const TriangleMesh m = coloured_tetrahedron(type);
+      write_mesh(path("c.ply"), m, {ascii});
+      const TriangleMesh back = read_mesh(path("c.ply"));
+      ASSERT_EQ(back.attributes.size(), m.attributes.size()) << type;
+      for (std::size_t a = 0; a < m.attributes.size(); ++a) {
+        EXPECT_EQ(back.attributes[a].name, m.attributes[a].name);
+        EXPECT_EQ(back.attributes[a].type, m.attributes[a].type);
+        for (std::size_t v = 0; v < 4; ++v) {
+          const double want = m.attributes[a].type == "uchar"
+                                  ? std::round(m.attributes[a].values[v])
+                              : m.attributes[a].type == "float"
+                                  ? static_cast<float>(m.attributes[a].values[v])
+                                  : m.attributes[a].values[v];
+          EXPECT_EQ(back.attributes[a].values[v], want) << m.attributes[a].name << " " << v;
+        }
+      }
+      // Point sets too.
+      PointSet points = test::sample_sphere(4);
+      points.points[3] *= 2;
+      points.attributes = m.attributes;
+      write_points(path("p.ply"), points, {ascii});
+      const PointSet read = read_points(path("p.ply"));
+      ASSERT_EQ(read.attributes.size(), m.attributes.size());
+      EXPECT_EQ(read.attributes[4].values, back.attributes[4].values);
+    }
+}
+
+TEST_F(IoTest, OffAndObjCarryTheColours) {
+  const TriangleMesh m = coloured_tetrahedron("uchar");
+  write_mesh(path("c.off"), m);
+  const std::string off = slurp(path("c.off"));
+  EXPECT_EQ(off.rfind("COFF\n", 0), 0u) << off;
+  EXPECT_NE(off.find(" 0 255 0 255\n"), std::string::npos) << off;  // red 0, green 255, blue 0
+  EXPECT_EQ(read_mesh(path("c.off")).faces.size(), 4u);
+  write_mesh(path("c.obj"), m);
+  const std::string obj = slurp(path("c.obj"));
+  EXPECT_NE(obj.find(" 1 0 0\n"), std::string::npos) << obj;  // vertex 2: red 1, green 0, blue 0
+  EXPECT_EQ(read_mesh(path("c.obj")).faces.size(), 4u);
+}
+
+TEST_F(IoTest, BadColoursAreNamed) {
+  const std::string head =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+      "property float z\n";
+  const std::string points[4] = {"0 0 0", "1 0 0", "0 1 0", "0 0 1"};
+  auto file = [&](const std::string& properties, const std::string& values) {
+    std::string text = head + properties + "end_header\n";
+    for (const std::string& p : points) text += p + " " + values + "\n";
+    return text;
+  };
+  const std::string floats = "property float red\nproperty float green\nproperty float blue\n";
+  write_file("c.ply", file(floats, "0.5 1.5 0"));
+  expect_input_error([&] { read_points(path("c.ply")); },
+                     {path("c.ply"), "line 11 (point 1)", "'green'", "1.5", "outside 0-1"});
+  write_file("c.ply",
+             file("property int red\nproperty uchar green\nproperty uchar blue\n", "1 2 3"));
+  expect_input_error([&] { read_points(path("c.ply")); },
+                     {path("c.ply"), "'red' is int", "uchar (0-255)"});
+  write_file("c.ply", file(floats, "nan 0 0"));
+  expect_input_error([&] { read_points(path("c.ply")); }, {"'red' is nan", "outside 0-1"});
+  // A lone channel, or an unknown property, is no colour: read as it is.
+  write_file("c.ply", file("property int red\nproperty float confidence\n", "-4 0.5"));
+  const PointSet lone = read_points(path("c.ply"));
+  ASSERT_EQ(lone.attributes.size(), 2u);
+  EXPECT_EQ(lone.attributes[0].values[3], -4);
+  // A point set from memory gets the same checks.
+  PointSet p = test::sample_sphere(10);
+  p.attributes = {{"red", "uchar", std::vector<double>(10, 1)},
+                  {"green", "uchar", std::vector<double>(10, 300)},
+                  {"blue", "uchar", std::vector<double>(10, 1)}};
+  expect_input_error([&] { validate_points(p, "mine"); }, {"mine: point 1", "'green' is 300"});
+  p.attributes.resize(1);
+  p.attributes[0].values.resize(9);
+  expect_input_error([&] { validate_points(p, "mine"); }, {"'red' has 9 values for 10 points"});
+}
+
+TEST_F(IoTest, MergedDuplicatesTakeTheirAttributesWithThem) {
+  PointSet p = test::sample_sphere(10);
+  p.points.push_back(p.points[3]);
+  p.normals.push_back(p.normals[3]);
+  p.attributes = {{"intensity", "float", {}}};
+  for (int i = 0; i < 11; ++i) p.attributes[0].values.push_back(i);
+  const PointSet merged = validate_points(p, "mine");
+  ASSERT_EQ(merged.size(), 10u);
+  ASSERT_EQ(merged.attributes[0].values.size(), 10u);
+  for (int i = 0; i < 10; ++i) EXPECT_EQ(merged.attributes[0].values[i], i);
+}
+
 }  // namespace
 }  // namespace pdd

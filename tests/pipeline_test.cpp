@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "support/shapes.h"
 
@@ -421,6 +422,102 @@ TEST(Pipeline, TheDefaultSizingStaysInProportionToTheInput) {
   EXPECT_EQ(fine.budget.input_vertices, 0u);
   EXPECT_FALSE(fine.budget.limited_by_input);
   EXPECT_GT(fine.mesh.faces.size(), 2 * r.mesh.faces.size());
+}
+
+TEST(Pipeline, UniformOutliersAreDroppedCountedAndLeaveOneSurface) {
+  // 2 % of points uniform in the sphere's enlarged bounding box, with random normals.
+  PointSet input = test::sample_sphere(2000);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.1, 1.1);
+  const int strays = 40;
+  for (int i = 0; i < strays; ++i) {
+    input.points.emplace_back(u(rng), u(rng), u(rng));
+    input.normals.push_back(Vec3(u(rng), u(rng), u(rng)).normalized());
+  }
+  ReconstructOptions o = fast_options(SolverKind::kSsd, 0.1);
+  const Result r = reconstruct(input, o);
+  expect_closed_manifold(r.mesh, 0);
+  // The test finds the strays well away from the surface (here, with 16 neighbours about
+  // 0.16 apart, those more than 0.6 off); those nearer leave blobs that the removal of
+  // unsupported components takes.
+  std::size_t far = 0;
+  for (int i = 0; i < strays; ++i) far += std::abs(input.points[2000 + i].norm() - 1) > 0.6;
+  std::cout << r.outliers.removed << " of " << strays << " strays dropped, " << far
+            << " far ones\n";
+  EXPECT_GE(r.outliers.removed, far);
+  EXPECT_GT(far, 0u);
+  EXPECT_LE(r.outliers.removed, static_cast<std::size_t>(strays));
+  const std::string json = statistics_json(r, o);
+  EXPECT_NE(json.find("\"removed\": " + std::to_string(r.outliers.removed)), std::string::npos);
+  EXPECT_NE(outliers_note(r).find(std::to_string(r.outliers.removed) + " outliers"),
+            std::string::npos);
+  // Without the test the strays leave more than one component.
+  o.outliers.ratio = 0;
+  o.min_component_samples = 0;
+  const Result kept = reconstruct(input, o);
+  EXPECT_EQ(kept.outliers.removed, 0u);
+  EXPECT_GT(surface_topology(kept.mesh).components, 1u);
+}
+
+TEST(Pipeline, ATrimmedHemisphereIsOneOpenPieceNearTheSamples) {
+  PointSet input;
+  const PointSet sphere = test::sample_sphere(3000);
+  for (std::size_t i = 0; i < sphere.size(); ++i)
+    if (sphere.points[i].z() > 0) {
+      input.points.push_back(sphere.points[i]);
+      input.normals.push_back(sphere.normals[i]);
+    }
+  ReconstructOptions o = fast_options(SolverKind::kSsd, 0.08);
+  o.trim.distance = 2;
+  const Result r = reconstruct(input, o);
+  ASSERT_TRUE(r.trim.trimmed);
+  const SurfaceTopology topo = surface_topology(r.mesh);
+  EXPECT_TRUE(topo.manifold);
+  EXPECT_FALSE(topo.closed);
+  EXPECT_EQ(topo.components, 1u);
+  EXPECT_EQ(r.trim.boundary_loops, 1);
+  EXPECT_GT(r.trim.area_removed, 0.3);
+  for (const Vec3& v : r.mesh.vertices) {
+    EXPECT_GT(v.z(), -5 * r.trim.spacing);
+    EXPECT_LT(std::abs(v.norm() - 1), 0.05);
+  }
+  // The cut keeps the mesh's quality: about that of the closed run.
+  const TriangleQuality q = triangle_quality(r.mesh);
+  o.trim.distance = 0;
+  const TriangleQuality closed = triangle_quality(reconstruct(input, o).mesh);
+  std::cout << "under 20 degrees: closed " << closed.fraction_below_20 << ", trimmed "
+            << q.fraction_below_20 << "; mean min angle " << closed.mean_min_angle << ", "
+            << q.mean_min_angle << "\n";
+  EXPECT_LT(q.fraction_below_20, closed.fraction_below_20 + 0.01);
+  EXPECT_GT(q.mean_min_angle, closed.mean_min_angle - 1.5);
+  EXPECT_EQ(r.iterations.back().triangles, r.mesh.faces.size());
+}
+
+TEST(Pipeline, ColoursOfTheSamplesReachTheOutputVertices) {
+  PointSet input = test::sample_sphere(2000);
+  Attribute red{"red", "uchar", {}}, green{"green", "uchar", {}}, blue{"blue", "uchar", {}},
+      label{"segment_index", "int", {}};
+  for (const Vec3& p : input.points) {
+    red.values.push_back(std::round(127.5 * (p.z() + 1)));
+    green.values.push_back(0);
+    blue.values.push_back(255);
+    label.values.push_back(p.x() > 0);
+  }
+  input.attributes = {red, green, blue, label};
+  ReconstructOptions o = fast_options(SolverKind::kSsd, 0.12);
+  const Result r = reconstruct(input, o);
+  ASSERT_EQ(r.mesh.attributes.size(), 3u);  // colours by default, not the label
+  double error = 0;
+  for (std::size_t v = 0; v < r.mesh.vertices.size(); ++v)
+    error += std::abs(r.mesh.attributes[0].values[v] - 127.5 * (r.mesh.vertices[v].z() + 1));
+  error /= static_cast<double>(r.mesh.vertices.size());
+  std::cout << "mean red error " << error << " of 255\n";
+  EXPECT_LT(error, 3);
+  o.attributes = "segment_index";
+  EXPECT_EQ(reconstruct(input, o).mesh.attributes.size(), 1u);
+  o.attributes = "intensity";
+  EXPECT_THROW(reconstruct(input, o), InputError);
+  EXPECT_THROW(parse_attribute_selection("red,,blue"), InputError);
 }
 
 }  // namespace

@@ -67,6 +67,16 @@ RemovedComponents remove_small_components(TriangleMesh& mesh, double min_edges);
 // boundary (a one-view scan's invented back) stays. Not in the paper.
 RemovedComponents remove_open_components(TriangleMesh& mesh);
 
+// Removes the components, but the largest, that fewer than min_samples of
+// `samples` support: those whose vertices are nearest to fewer samples. The
+// blobs that a few stray points left near the surface (outliers the test of
+// outliers.h could not tell from the surface) make such components; a part
+// of the shape is supported by every sample on it. 0 keeps everything.
+// Throws std::invalid_argument if min_samples is negative.
+RemovedComponents remove_unsupported_components(TriangleMesh& mesh,
+                                                const std::vector<Vec3>& samples,
+                                                int min_samples);
+
 struct CleanupOptions {
   double max_dihedral_degrees = 30;  // only where neighbouring triangles turn by at most this
   double needle_angle_degrees = 20;  // triangles with a smaller angle and a shortest edge at
@@ -96,5 +106,52 @@ CleanupReport cleanup_isosurface(TriangleMesh& mesh, const CleanupOptions& optio
 // number of flips. Throws std::invalid_argument if the mesh is not an
 // oriented manifold or the bound is outside [0, 90).
 int flip_flat_edges(TriangleMesh& mesh, double max_dihedral_degrees);
+
+// The samples' attributes at `vertices` (the output's): colours and
+// floating-point properties by inverse-squared-distance weighting of the
+// `neighbors` nearest samples (rounded for integer colour types), other
+// integer properties (labels, indices) from the nearest sample. One Attribute
+// per attribute of `samples`, in order.
+std::vector<Attribute> interpolate_attributes(const PointSet& samples,
+                                              const std::vector<Vec3>& vertices,
+                                              int neighbors = 8);
+
+// Trimming a closed surface to the part its samples support (scans with an
+// unseen side), as an open manifold mesh.
+struct TrimOptions {
+  // Keep the surface within this many local sample spacings of a sample (the
+  // spacing: the mean nearest-neighbour distance of the sample's 8 nearest); 0: no trim.
+  double distance = 0;
+  // Unsupported regions less than this many average spacings across are a
+  // scan's gaps: they stay closed.
+  double holes = 30;
+  // Pieces the cut leaves that are less than this many average spacings across are dropped.
+  double islands = 10;
+};
+
+struct TrimReport {
+  bool trimmed = false;
+  double spacing = 0;       // the samples' average spacing (mean nearest-neighbour distance)
+  double area_removed = 0;  // fraction of the surface's area cut away
+  int holes_kept = 0;       // unsupported regions kept closed
+  RemovedComponents islands;
+  int boundary_loops = 0;   // of the trimmed mesh
+};
+
+// Cuts `mesh` along the iso-line g = options.distance of g = a vertex's
+// distance to its nearest sample in that sample's local spacing (the largest
+// of its own and its edges' midpoints', smoothed over the mesh), through the
+// triangles: crossed edges get a new vertex, vertices near the line take it
+// through themselves (snapped) so that no sliver is made, and the parts where
+// g is larger are removed, but for the small unsupported regions (`holes`);
+// then small pieces (`islands`) go, and the rim is smoothed (ears removed,
+// rim vertices relaxed along it). The mesh stays an oriented manifold, with
+// boundary. Throws std::invalid_argument for an option that is negative or
+// not finite, or fewer than two samples.
+TrimReport trim_to_samples(TriangleMesh& mesh, const std::vector<Vec3>& samples,
+                           const TrimOptions& options);
+
+// The number of boundary loops (cycles of edges of one face only) of a mesh.
+int boundary_loops(const TriangleMesh& mesh);
 
 }  // namespace pdd

@@ -65,7 +65,8 @@ struct ValidationReport {
 // (validate_points). Formats:
 //   .ply              ASCII, binary_little_endian or binary_big_endian; element
 //                     "vertex" with x y z and optionally nx ny nz of any scalar
-//                     type; other properties and elements are skipped.
+//                     type; its other scalar properties become attributes
+//                     (colours, intensity, labels); other elements are skipped.
 //   .xyz .pwn .xyzn   text, one point per line: "x y z" or "x y z nx ny nz" (the
 //                     same for every line); blank lines and text after '#' are
 //                     skipped; an optional first line holding only the point
@@ -87,7 +88,9 @@ PointSet read_points(const std::string& path, ValidationReport* report = nullptr
 // fewer than options.min_points distinct points, or all points coincide, lie
 // in one plane or span an extent out of range (see ValidationOptions); when a
 // few far points (outliers) cause the last two, the message names them.
-// Points are numbered from 1 in messages.
+// Points are numbered from 1 in messages. Attributes are checked too: one
+// value per point, and colours (red, green and blue together, optional alpha)
+// of type uchar, ushort, float or double, and within 0-255, 0-65535 or 0-1.
 // Normals are kept as given (not normalized).
 PointSet validate_points(PointSet points, const std::string& source,
                          ValidationReport* report = nullptr, const ValidationOptions& options = {});
@@ -126,8 +129,9 @@ struct MeshWriteOptions {
 };
 
 // Writes a triangle mesh: .ply (vertices as double x y z so that positions
-// round-trip bit for bit; faces as "list uchar int vertex_indices"), .off,
-// .obj. Text numbers are written in their shortest form that reads back to
+// round-trip bit for bit, then the attributes in their own types; faces as
+// "list uchar int vertex_indices"), .off and .obj (colours only: COFF, and
+// OBJ's "v x y z r g b"). Text numbers are written in their shortest form that reads back to
 // the same double. Throws InputError for an unknown extension or a target that
 // cannot be written, std::invalid_argument when a face refers to a vertex the
 // mesh does not have.

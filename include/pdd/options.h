@@ -19,6 +19,7 @@ struct OptionSpec {
     kSeed,     // an unsigned 64-bit integer
     kSize,     // a memory size such as 8G (parse_memory_size)
     kFlag,     // true or false
+    kText,     // free text, checked by `set`
   };
   std::string name;  // without dashes, words joined by '-': "target-edge"
   Kind kind = Kind::kNumber;

@@ -9,6 +9,7 @@
 #include <pdd/contour.h>
 #include <pdd/domain.h>
 #include <pdd/optimize.h>
+#include <pdd/outliers.h>
 #include <pdd/sizing.h>
 #include <pdd/solvers.h>
 #include <pdd/types.h>
@@ -77,6 +78,7 @@ struct ReconstructOptions {
   Orientation orientation = Orientation::kSpectral;  // of estimated or re-oriented normals
   int normal_neighbors = 18;                     // k of the estimation and the MST
   std::string source = "points";                 // names the input in error messages
+  OutlierOptions outliers;     // stray points dropped before everything else (outliers.h)
   DomainOptions domain;        // §3.2: sphere 1.4 r, 100 points, radius-edge 1.3
   SolverOptions solver;        // §3.5: SSD by default
   OptimizerOptions optimizer;  // §3.3: lambda_a = 60, lambda_m = 3 (optimize.h)
@@ -90,6 +92,15 @@ struct ReconstructOptions {
                                    // cut open by the domain's boundary but the largest
                                    // (contour.h, remove_small_components and
                                    // remove_open_components); 0: all kept
+  int min_component_samples = 10;  // components but the largest nearest to fewer input points
+                                   // are removed: blobs around stray points (contour.h,
+                                   // remove_unsupported_components); 0: all kept
+  TrimOptions trim;            // distance 0 (the default): the closed surface; otherwise cut to
+                               // the samples' support after the small components went (contour.h)
+  // The point attributes the output's vertices carry (contour.h, interpolate_attributes):
+  // "colors" (red, green, blue, alpha when the points have them), "all", "none", or names
+  // separated by commas; parse_attribute_selection checks the text.
+  std::string attributes = "colors";
   bool cleanup = true;         // flips and needle collapses on the final isosurface (contour.h);
                                // not part of the paper, docs/benchmarks.md "Isosurface clean-up"
   CleanupOptions cleanup_options;
@@ -137,6 +148,7 @@ struct IterationStats {
   // triangle counts and angles above are those of the mesh returned.
   RemovedComponents small_components;
   RemovedComponents open_components;
+  RemovedComponents unsupported_components;
   CleanupReport cleanup;
   double seconds_cleanup = 0;
 };
@@ -174,14 +186,27 @@ struct NormalsReport {
   double seconds = 0;
 };
 
+// Checks and normalizes an attribute selection (ReconstructOptions::attributes):
+// "colors", "all", "none" or a comma-separated list of property names (letters,
+// digits, '_'; "colors" may be one of them). InputError "--attributes: ..." otherwise.
+std::string parse_attribute_selection(const std::string& text);
+
+// The attributes of `points` that `selection` names, in the points' order.
+// InputError naming `source` when it names a property the points lack.
+std::vector<Attribute> select_attributes(const PointSet& points, const std::string& selection,
+                                         const std::string& source);
+
 struct Result {
   TriangleMesh mesh;  // the isosurface of the final solve, outward-facing, without its small
-                      // components, cleaned up unless ReconstructOptions::cleanup is off
+                      // components, trimmed if asked, cleaned up unless ReconstructOptions::cleanup
+                      // is off, with the selected attributes at its vertices
   Domain domain;      // the final domain, f = the final solution
   std::vector<IterationStats> iterations;  // the last entry is the final solve
   double noise = 0;  // SSD with the automatic value weight: estimate_noise(points) (solvers.h);
                      // otherwise 0. The weight of each solve is in its SolverStats.
   MemoryBudget budget;
+  OutlierReport outliers;  // the points dropped as outliers before the run
+  TrimReport trim;         // what the trim cut (trimmed = false: the surface is closed)
   NormalsReport normals;
   double seconds = 0;
   bool cancelled = false;  // the progress callback returned false: mesh is empty

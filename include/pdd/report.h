@@ -29,6 +29,12 @@ std::string normals_note(const Result& result);
 // coarsened, or refinement stopped at the vertex budget; "" otherwise.
 std::string memory_budget_note(const Result& result);
 
+// One line on the outliers the run dropped, or "" when none.
+std::string outliers_note(const Result& result);
+
+// One line on what --trim cut, or "" when the run did not trim.
+std::string trim_note(const Result& result);
+
 // --save-iterations: writes the isosurface (.ply) and the domain with f (.vtu)
 // of every iteration into `folder`, created if missing (Figure 7). InputError
 // at once when `folder` cannot be (check_output_path, OutputKind::kFolder).

@@ -27,7 +27,11 @@ class Progress:
 class PointCloud:
     points: npt.NDArray[Any]
     normals: Optional[npt.NDArray[Any]]
-    def __init__(self, points: ArrayLike, normals: Optional[ArrayLike] = None) -> None: ...
+    colors: Optional[npt.NDArray[Any]]
+    attributes: dict[str, npt.NDArray[Any]]
+    def __init__(self, points: ArrayLike, normals: Optional[ArrayLike] = None,
+                 colors: Optional[ArrayLike] = None,
+                 attributes: Optional[dict[str, ArrayLike]] = None) -> None: ...
     def __len__(self) -> int: ...
     def to_open3d(self) -> Any: ...
     @classmethod
@@ -37,8 +41,11 @@ class Mesh:
     vertices: npt.NDArray[Any]
     faces: npt.NDArray[Any]
     stats: Optional[dict[str, Any]]
+    colors: Optional[npt.NDArray[Any]]
+    attributes: dict[str, npt.NDArray[Any]]
     def __init__(self, vertices: ArrayLike, faces: ArrayLike,
-                 stats: Optional[dict[str, Any]] = None) -> None: ...
+                 stats: Optional[dict[str, Any]] = None, colors: Optional[ArrayLike] = None,
+                 attributes: Optional[dict[str, ArrayLike]] = None) -> None: ...
     def to_open3d(self) -> Any: ...
     @classmethod
     def from_open3d(cls, mesh: Any) -> Mesh: ...
@@ -48,11 +55,13 @@ MeshLike = Union[Mesh, tuple[ArrayLike, ArrayLike], Any]
 def reconstruct(
     points: Union[ArrayLike, PointCloud, Any],
     normals: Optional[ArrayLike] = None,
+    colors: Optional[ArrayLike] = None,
     *,
     solver: Literal["ssd", "poisson", "spectral"] = "ssd",
     normals_mode: Literal["keep", "orient", "estimate"] = "keep",
     orientation: Literal["spectral", "mst"] = "spectral",
     normal_neighbors: int = 18,
+    outliers: float = 3.0,
     value_weight: Optional[float] = None,
     linear: Literal["multigrid", "cholmod"] = "multigrid",
     domain: Literal["progressive", "direct", "input", "octree"] = "progressive",
@@ -67,6 +76,11 @@ def reconstruct(
     optimizer_rounds_before_refining: int = 1,
     hole_coarsening: float = 4.0,
     min_component_size: float = 4.0,
+    min_component_samples: int = 10,
+    trim: float = 0.0,
+    trim_holes: float = 30.0,
+    trim_islands: float = 10.0,
+    attributes: str = "colors",
     no_cleanup: bool = False,
     cleanup_dihedral: float = 30.0,
     threads: int = 0,
@@ -85,6 +99,8 @@ def estimate_normals(points: Union[ArrayLike, PointCloud, Any], normals: Optiona
                      *, normals_mode: Literal["keep", "orient", "estimate"] = "keep",
                      orientation: Literal["spectral", "mst"] = "spectral", normal_neighbors: int = 18,
                      threads: int = 0) -> PointCloud: ...
+def find_outliers(points: Union[ArrayLike, PointCloud, Any], *, ratio: float = 3.0,
+                  neighbors: int = 16) -> npt.NDArray[np.bool_]: ...
 def read_points(path: Path) -> PointCloud: ...
 def read_mesh(path: Path) -> Mesh: ...
 def write_mesh(path: Path, mesh: MeshLike, *, ascii: bool = False) -> None: ...

@@ -95,6 +95,39 @@ TriangleMesh mesh_from_arrays(const py::handle& vertices, const py::handle& face
   return mesh;
 }
 
+std::vector<Attribute> attributes_from_list(const py::handle& list) {
+  std::vector<Attribute> out;
+  if (py::reinterpret_borrow<py::object>(list).is_none()) return out;
+  for (const py::handle entry : list) {
+    const auto t = py::reinterpret_borrow<py::tuple>(entry);
+    Attribute a;
+    a.name = t[0].cast<std::string>();
+    a.type = t[1].cast<std::string>();
+    const py::array values = as_array(t[2], a.name);
+    if (values.ndim() != 1)
+      throw InputError(a.name + ": expected an array of shape (n,), got shape " +
+                       shape_text(values));
+    const auto converted = py::array_t<double, py::array::forcecast>::ensure(values);
+    const auto r = converted.unchecked<1>();
+    a.values.resize(static_cast<std::size_t>(r.shape(0)));
+    for (py::ssize_t i = 0; i < r.shape(0); ++i) a.values[i] = r(i);
+    out.push_back(std::move(a));
+  }
+  return out;
+}
+
+py::list list_from(std::vector<Attribute>&& attributes) {
+  py::list out;
+  for (Attribute& a : attributes) {
+    auto* owned = new std::vector<double>(std::move(a.values));
+    const py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<double>*>(p); });
+    out.append(py::make_tuple(a.name, a.type,
+                              py::array_t<double>({static_cast<py::ssize_t>(owned->size())},
+                                                  owned->data(), owner)));
+  }
+  return out;
+}
+
 py::array array_from(std::vector<Vec3>&& vectors) {
   auto* owned = new std::vector<Vec3>(std::move(vectors));
   const py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<Vec3>*>(p); });

@@ -6,6 +6,7 @@
 #include <pdd/errors.h>
 #include <pdd/io.h>
 #include <pdd/options.h>
+#include <pdd/outliers.h>
 #include <pdd/pipeline.h>
 #include <pdd/report.h>
 
@@ -27,6 +28,7 @@ const char* kind_name(OptionSpec::Kind kind) {
     case OptionSpec::Kind::kSeed: return "seed";
     case OptionSpec::Kind::kSize: return "size";
     case OptionSpec::Kind::kFlag: return "flag";
+    case OptionSpec::Kind::kText: return "text";
   }
   return "unknown";
 }
@@ -51,17 +53,21 @@ py::tuple read_points_arrays(const std::string& path) {
   const bool has_normals = points.has_normals();
   py::object normals = py::none();
   if (has_normals) normals = array_from(std::move(points.normals));
-  return py::make_tuple(array_from(std::move(points.points)), normals, report.warnings);
+  return py::make_tuple(array_from(std::move(points.points)), normals, report.warnings,
+                        list_from(std::move(points.attributes)));
 }
 
 py::tuple read_mesh_arrays(const std::string& path) {
   TriangleMesh mesh = read_mesh(path);
-  return py::make_tuple(array_from(std::move(mesh.vertices)), array_from(std::move(mesh.faces)));
+  return py::make_tuple(array_from(std::move(mesh.vertices)), array_from(std::move(mesh.faces)),
+                        list_from(std::move(mesh.attributes)));
 }
 
 void write_mesh_arrays(const std::string& path, const py::handle& vertices,
-                       const py::handle& faces, bool ascii) {
-  const TriangleMesh mesh = mesh_from_arrays(vertices, faces, "mesh");
+                       const py::handle& faces, const py::handle& attributes, bool ascii) {
+  TriangleMesh mesh = mesh_from_arrays(vertices, faces, "mesh");
+  mesh.attributes = attributes_from_list(attributes);
+  validate_mesh(mesh, "mesh");
   py::gil_scoped_release release;
   write_mesh(path, mesh, {ascii});
 }
@@ -149,14 +155,30 @@ PYBIND11_MODULE(_pdd, m) {
   m.def("convert_points", [](const py::handle& points) {
     return array_from(vectors_from_array(points, "points"));
   }, py::arg("points"));
-  m.def("reconstruct", &pdd::python::reconstruct, py::arg("points"), py::arg("normals"), py::arg("options"),
+  m.def("reconstruct", &pdd::python::reconstruct, py::arg("points"), py::arg("normals"),
+        py::arg("attributes"), py::arg("options"),
         py::arg("progress"), py::arg("domain_out"), py::arg("save_iterations"));
   m.def("prepare_normals", &prepare_normals_arrays, py::arg("points"), py::arg("normals"),
         py::arg("options"));
   m.def("read_points", &read_points_arrays, py::arg("path"));
   m.def("read_mesh", &read_mesh_arrays, py::arg("path"));
   m.def("write_mesh", &write_mesh_arrays, py::arg("path"), py::arg("vertices"), py::arg("faces"),
-        py::arg("ascii"));
+        py::arg("attributes"), py::arg("ascii"));
+  m.def("find_outliers", [](const py::handle& points, double ratio, int neighbors) {
+    OutlierOptions options;
+    options.ratio = ratio;
+    options.neighbors = neighbors;
+    const std::vector<Vec3> p = vectors_from_array(points, "points");
+    std::vector<char> mask;
+    {
+      py::gil_scoped_release release;
+      mask = find_outliers(p, options);
+    }
+    py::array_t<bool> out(static_cast<py::ssize_t>(mask.size()));
+    auto w = out.mutable_unchecked<1>();
+    for (std::size_t i = 0; i < mask.size(); ++i) w(static_cast<py::ssize_t>(i)) = mask[i] != 0;
+    return out;
+  }, py::arg("points"), py::arg("ratio"), py::arg("neighbors"));
   m.def("quality", &quality_json, py::arg("vertices"), py::arg("faces"));
   m.def("compare", &compare_json, py::arg("a_vertices"), py::arg("a_faces"),
         py::arg("b_vertices"), py::arg("b_faces"), py::arg("samples"),

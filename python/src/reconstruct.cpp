@@ -16,6 +16,7 @@
 namespace pdd::python {
 
 py::dict reconstruct(const py::handle& points, const py::handle& normals,
+                     const py::handle& attributes,
                      const std::vector<std::pair<std::string, std::string>>& options,
                      const py::object& progress, const std::string& domain_out,
                      const std::string& save_iterations) {
@@ -25,8 +26,9 @@ py::dict reconstruct(const py::handle& points, const py::handle& normals,
   if (!save_iterations.empty()) check_output_path(save_iterations, OutputKind::kFolder);
 
   ValidationReport report;
-  const PointSet input =
-      validate_points(point_set_from_arrays(points, normals), "points", &report);
+  PointSet given = point_set_from_arrays(points, normals);
+  given.attributes = attributes_from_list(attributes);
+  const PointSet input = validate_points(std::move(given), "points", &report);
   if (!save_iterations.empty())
     run_options.on_iteration = iteration_files(save_iterations, false);
 
@@ -80,7 +82,11 @@ py::dict reconstruct(const py::handle& points, const py::handle& normals,
   }
   out["stats"] = statistics_json(result, run_options);
   out["table"] = statistics_table(result);
-  out["memory_budget_note"] = memory_budget_note(result);
+  py::list notes;
+  for (const std::string& note : {outliers_note(result), memory_budget_note(result)})
+    if (!note.empty()) notes.append(note);
+  out["notes"] = notes;
+  out["attributes"] = list_from(std::move(result.mesh.attributes));
   out["vertices"] = array_from(std::move(result.mesh.vertices));
   out["faces"] = array_from(std::move(result.mesh.faces));
   return out;

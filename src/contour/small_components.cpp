@@ -3,6 +3,7 @@
 #include <pdd/contour.h>
 
 #include <Eigen/Geometry>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,14 +13,13 @@
 #include <utility>
 #include <vector>
 
+#include "common/nearest_neighbors.h"
+#include "common/union_find.h"
+
 namespace pdd {
 namespace {
 
-// Union-find root of v, halving the path on the way.
-int root(std::vector<int>& parent, int v) {
-  while (parent[v] != v) v = parent[v] = parent[parent[v]];
-  return v;
-}
+using detail::find_root;
 
 // The connected components of a mesh (through shared vertices): a root
 // vertex per vertex, and per root its number of faces.
@@ -30,13 +30,13 @@ struct Components {
 };
 
 Components components(const TriangleMesh& mesh) {
-  std::vector<int> parent(mesh.vertices.size());
-  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<int> parent = detail::singletons(mesh.vertices.size());
   for (const auto& f : mesh.faces)
-    for (int i = 0; i < 3; ++i) parent[root(parent, f[i])] = root(parent, f[(i + 1) % 3]);
+    for (int i = 0; i < 3; ++i) parent[find_root(parent, f[i])] = find_root(parent, f[(i + 1) % 3]);
   Components c;
   c.root_of.resize(parent.size());
-  for (std::size_t v = 0; v < parent.size(); ++v) c.root_of[v] = root(parent, static_cast<int>(v));
+  for (std::size_t v = 0; v < parent.size(); ++v)
+    c.root_of[v] = find_root(parent, static_cast<int>(v));
   c.faces.assign(parent.size(), 0);
   for (const auto& f : mesh.faces) ++c.faces[c.root_of[f[0]]];
   c.largest = static_cast<int>(std::max_element(c.faces.begin(), c.faces.end()) - c.faces.begin());
@@ -111,6 +111,37 @@ RemovedComponents remove_open_components(TriangleMesh& mesh) {
     i = j;
   }
   return remove_marked(mesh, c, open);
+}
+
+RemovedComponents remove_unsupported_components(TriangleMesh& mesh,
+                                                const std::vector<Vec3>& samples,
+                                                int min_samples) {
+  if (min_samples < 0)
+    throw std::invalid_argument("remove_unsupported_components: min_samples must be >= 0");
+  if (min_samples == 0 || mesh.faces.empty() || samples.empty()) return {};
+  const Components c = components(mesh);
+  // Each sample supports the component of the output vertex nearest to it.
+  std::vector<char> used(mesh.vertices.size(), 0);
+  for (const auto& f : mesh.faces)
+    for (int v : f) used[v] = 1;
+  std::vector<Vec3> vertices;
+  std::vector<int> vertex_root;
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    if (used[v]) {
+      vertices.push_back(mesh.vertices[v]);
+      vertex_root.push_back(c.root_of[v]);
+    }
+  const detail::NearestNeighbors tree(vertices);
+  std::vector<int> nearest_root(samples.size());
+  tbb::parallel_for(std::size_t(0), samples.size(), [&](std::size_t i) {
+    nearest_root[i] = vertex_root[tree.query(samples[i], 1)[0]];
+  });
+  std::vector<int> support(mesh.vertices.size(), 0);
+  for (int r : nearest_root) ++support[r];
+  std::vector<char> unsupported(mesh.vertices.size(), 0);
+  for (std::size_t r = 0; r < mesh.vertices.size(); ++r)
+    unsupported[r] = c.faces[r] > 0 && static_cast<int>(r) != c.largest && support[r] < min_samples;
+  return remove_marked(mesh, c, unsupported);
 }
 
 }  // namespace pdd

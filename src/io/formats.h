@@ -24,6 +24,7 @@ namespace pdd::io {
 struct RawVertices {
   std::vector<Vec3> points;
   std::vector<Vec3> normals;       // empty, or one per point
+  std::vector<Attribute> attributes;  // PLY: every other scalar vertex property
   std::vector<std::size_t> lines;  // line of each point in a text file; empty for binary files
 };
 
@@ -49,15 +50,34 @@ PointSet validate_points_at(PointSet points, const std::string& source,
                             const std::vector<std::size_t>& lines, ValidationReport* report,
                             const ValidationOptions& options);
 
-// Writers. `normals` is empty or one per vertex; faces index `vertices` and
+// Throws InputError naming `source` when an attribute has not one value per
+// point, a duplicate name or an unknown type, or when the colours (red, green
+// and blue together, optional alpha) are of another type than uchar, ushort,
+// float or double, or out of their type's range (0-1 for floats). `lines`
+// (the line of each point, or empty) names the point at fault.
+void check_attributes(const std::string& source, const std::vector<Attribute>& attributes,
+                      std::size_t n, const std::vector<std::size_t>& lines);
+
+// Writers. `normals` is empty or one per vertex; `attributes` empty or each
+// with one value per vertex; faces index `vertices` and
 // are checked as they are written (std::invalid_argument when out of range).
 using Faces = std::vector<std::array<int, 3>>;
 void write_ply(std::ostream& out, const std::vector<Vec3>& vertices,
-               const std::vector<Vec3>& normals, const Faces* faces, bool ascii);
+               const std::vector<Vec3>& normals, const std::vector<Attribute>& attributes,
+               const Faces* faces, bool ascii);
+// OFF and OBJ carry colours only (COFF with 0-255 values; OBJ's "v x y z r g b" with 0-1).
 void write_off(std::ostream& out, const std::vector<Vec3>& vertices,
-               const std::vector<Vec3>& normals, const Faces& faces);
+               const std::vector<Vec3>& normals, const std::vector<Attribute>& attributes,
+               const Faces& faces);
 void write_obj(std::ostream& out, const std::vector<Vec3>& vertices,
-               const std::vector<Vec3>& normals, const Faces& faces);
+               const std::vector<Vec3>& normals, const std::vector<Attribute>& attributes,
+               const Faces& faces);
+
+// The colour channels among `attributes` (red, green, blue, then alpha when
+// there), or none when there are no colours.
+std::vector<const Attribute*> colour_channels(const std::vector<Attribute>& attributes);
+// Channel value `value` of `channel` on the scale 0-1.
+double unit_colour(const Attribute& channel, double value);
 void write_xyz(std::ostream& out, const std::vector<Vec3>& points,
                const std::vector<Vec3>& normals);
 

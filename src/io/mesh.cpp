@@ -54,8 +54,10 @@ TriangleMesh read_mesh(const std::string& path) {
   if (raw.faces.empty()) io::fail(path, "holds no faces");
   const auto n = static_cast<std::int64_t>(points.size());
   if (n > std::numeric_limits<int>::max()) io::fail(path, "has too many vertices for int indices");
+  io::check_attributes(path, raw.vertices.attributes, points.size(), lines);
   TriangleMesh mesh;
   mesh.vertices = std::move(raw.vertices.points);
+  mesh.attributes = std::move(raw.vertices.attributes);
   mesh.faces.reserve(raw.faces.size());
   for (std::size_t f = 0; f < raw.faces.size(); ++f) {
     std::array<int, 3> face;
@@ -80,16 +82,21 @@ TriangleMesh read_mesh(const std::string& path) {
 void write_mesh(const std::string& path, const TriangleMesh& mesh,
                 const MeshWriteOptions& options) {
   const io::Format format = io::format_of(path, kMeshFormats, "mesh");
+  for (const Attribute& a : mesh.attributes)
+    if (a.values.size() != mesh.vertices.size())
+      throw std::invalid_argument("write_mesh: attribute '" + a.name + "' has " +
+                                  std::to_string(a.values.size()) + " values for " +
+                                  std::to_string(mesh.vertices.size()) + " vertices");
   io::write_output(path, options.staged, [&](std::ostream& out) {
     switch (format) {
       case io::Format::kPly:
-        io::write_ply(out, mesh.vertices, {}, &mesh.faces, options.ascii);
+        io::write_ply(out, mesh.vertices, {}, mesh.attributes, &mesh.faces, options.ascii);
         break;
       case io::Format::kOff:
-        io::write_off(out, mesh.vertices, {}, mesh.faces);
+        io::write_off(out, mesh.vertices, {}, mesh.attributes, mesh.faces);
         break;
       case io::Format::kObj:
-        io::write_obj(out, mesh.vertices, {}, mesh.faces);
+        io::write_obj(out, mesh.vertices, {}, mesh.attributes, mesh.faces);
         break;
       case io::Format::kXyz:
       case io::Format::kVtu:

@@ -89,7 +89,9 @@ RawMesh read_obj(const std::string& path, const std::string& data, Content conte
 }
 
 void write_obj(std::ostream& out, const std::vector<Vec3>& vertices,
-               const std::vector<Vec3>& normals, const Faces& faces) {
+               const std::vector<Vec3>& normals, const std::vector<Attribute>& attributes,
+               const Faces& faces) {
+  const std::vector<const Attribute*> colours = colour_channels(attributes);
   std::string text = "# written by pdd " PDD_VERSION "\n";
   auto flush = [&](bool force) {
     if (force || text.size() > (1u << 16)) {
@@ -106,7 +108,24 @@ void write_obj(std::ostream& out, const std::vector<Vec3>& vertices,
     text += '\n';
     flush(false);
   };
-  for (const Vec3& p : vertices) put("v", p);
+  // Colours as the widespread "v x y z r g b" extension (0-1; OBJ has no alpha).
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    if (colours.empty()) {
+      put("v", vertices[i]);
+      continue;
+    }
+    text += 'v';
+    for (int k = 0; k < 3; ++k) {
+      text += ' ';
+      append_double(text, vertices[i][k]);
+    }
+    for (int c = 0; c < 3; ++c) {
+      text += ' ';
+      append_double(text, unit_colour(*colours[c], colours[c]->values[i]));
+    }
+    text += '\n';
+    flush(false);
+  }
   for (const Vec3& n : normals) put("vn", n);
   for (std::size_t i = 0; i < faces.size(); ++i) {
     check_face(faces[i], i, vertices.size());

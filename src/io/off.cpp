@@ -2,6 +2,8 @@
 // optional prefixes C (vertex colours), N (vertex normals) and ST (texture
 // coordinates), the counts "nv nf [ne]", nv vertex lines and nf face lines.
 // '#' starts a comment. One vertex or face per line.
+#include <cmath>
+
 #include "io/formats.h"
 #include "io/text.h"
 
@@ -134,8 +136,10 @@ RawMesh read_off(const std::string& path, const std::string& data, Content conte
 }
 
 void write_off(std::ostream& out, const std::vector<Vec3>& vertices,
-               const std::vector<Vec3>& normals, const Faces& faces) {
-  std::string text = normals.empty() ? "OFF\n" : "NOFF\n";
+               const std::vector<Vec3>& normals, const std::vector<Attribute>& attributes,
+               const Faces& faces) {
+  const std::vector<const Attribute*> colours = colour_channels(attributes);
+  std::string text = std::string(colours.empty() ? "" : "C") + (normals.empty() ? "" : "N") + "OFF\n";
   text += std::to_string(vertices.size()) + ' ' + std::to_string(faces.size()) + " 0\n";
   auto flush = [&](bool force) {
     if (force || text.size() > (1u << 16)) {
@@ -151,6 +155,11 @@ void write_off(std::ostream& out, const std::vector<Vec3>& vertices,
     for (int k = 0; k < 3 && !normals.empty(); ++k) {
       text += ' ';
       append_double(text, normals[i][k]);
+    }
+    // Colours as 0-255 integers, alpha 255 when the input had none.
+    for (std::size_t c = 0; c < 4 && !colours.empty(); ++c) {
+      const double unit = c < colours.size() ? unit_colour(*colours[c], colours[c]->values[i]) : 1;
+      text += ' ' + std::to_string(static_cast<int>(std::lround(unit * 255)));
     }
     text += '\n';
     flush(false);

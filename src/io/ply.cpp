@@ -1,6 +1,7 @@
 // PLY (Turk's polygon file format): ASCII and binary of either byte order.
-// Reads the "vertex" element (x y z, optional nx ny nz) and, for meshes, the
-// "face" element's vertex_indices; every other element and property is
+// Reads the "vertex" element (x y z, optional nx ny nz, and every other scalar
+// property as an attribute) and, for meshes, the "face" element's
+// vertex_indices; every other element and property is
 // skipped but still checked for completeness, so that a truncated file or a
 // header that does not match the body is reported. ASCII records are read one
 // per line, as writers lay them out, so that an error can name its line.
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <optional>
+#include <type_traits>
 
 #include "io/formats.h"
 #include "io/text.h"
@@ -52,6 +54,19 @@ std::size_t size_of(Scalar type) {
 
 bool is_integer(Scalar type) { return type != Scalar::kFloat32 && type != Scalar::kFloat64; }
 
+// The canonical name of a type (the first of its two spellings).
+const char* type_name(Scalar type) {
+  for (const ScalarName& s : kScalars)
+    if (s.type == type) return s.name;
+  return "float";
+}
+
+Scalar type_named(const std::string& name) {
+  for (const ScalarName& s : kScalars)
+    if (name == s.name) return s.type;
+  return Scalar::kFloat32;
+}
+
 struct Property {
   std::string name;
   Scalar type = Scalar::kFloat32;  // of the value, or of the items of a list
@@ -81,6 +96,7 @@ struct VertexLayout {
   std::size_t element = 0;
   std::array<std::size_t, 3> position{};
   std::optional<std::array<std::size_t, 3>> normal;
+  std::vector<std::size_t> attributes;  // every other scalar property
 };
 
 struct FaceLayout {
@@ -250,6 +266,14 @@ VertexLayout vertex_layout(const std::string& path, const Header& header) {
   } else if (normal[0] || normal[1] || normal[2]) {
     fail(path, "malformed header: element 'vertex' has some of nx, ny, nz but not all three");
   }
+  for (std::size_t i = 0; i < vertex.properties.size(); ++i) {
+    const Property& property = vertex.properties[i];
+    const bool read = std::find(layout.position.begin(), layout.position.end(), i) !=
+                          layout.position.end() ||
+                      (layout.normal && std::find(layout.normal->begin(), layout.normal->end(),
+                                                  i) != layout.normal->end());
+    if (!read && !property.is_list) layout.attributes.push_back(i);
+  }
   return layout;
 }
 
@@ -296,6 +320,8 @@ void add_vertex(const VertexLayout& layout, const std::vector<double>& values, R
     const auto& n = *layout.normal;
     mesh.vertices.normals.emplace_back(values[n[0]], values[n[1]], values[n[2]]);
   }
+  for (std::size_t a = 0; a < layout.attributes.size(); ++a)
+    mesh.vertices.attributes[a].values.push_back(values[layout.attributes[a]]);
 }
 
 void read_ascii_body(const std::string& path, const std::string& data, const Header& header,
@@ -492,6 +518,10 @@ RawMesh read_ply(const std::string& path, const std::string& data, Content conte
   const std::size_t body = data.size() - header.body_offset;
   check_counts(path, header, body);
   RawMesh mesh;
+  for (std::size_t i : vertex.attributes) {
+    const Property& property = header.elements[vertex.element].properties[i];
+    mesh.vertices.attributes.push_back({property.name, type_name(property.type), {}});
+  }
   // Reserve no more than the body could hold, whatever the header claims.
   mesh.vertices.points.reserve(
       std::min<std::uint64_t>(header.elements[vertex.element].count, body / 3));
@@ -504,7 +534,8 @@ RawMesh read_ply(const std::string& path, const std::string& data, Content conte
 }
 
 void write_ply(std::ostream& out, const std::vector<Vec3>& vertices,
-               const std::vector<Vec3>& normals, const Faces* faces, bool ascii) {
+               const std::vector<Vec3>& normals, const std::vector<Attribute>& attributes,
+               const Faces* faces, bool ascii) {
   std::string text = "ply\nformat ";
   text += ascii ? "ascii 1.0\n" : "binary_little_endian 1.0\n";
   text += "comment written by pdd " PDD_VERSION "\n";
@@ -515,6 +546,11 @@ void write_ply(std::ostream& out, const std::vector<Vec3>& vertices,
     for (const char* name : {"nx", "ny", "nz"}) {
       text += std::string("property double ") + name + "\n";
     }
+  }
+  std::vector<Scalar> attribute_types;
+  for (const Attribute& a : attributes) {
+    attribute_types.push_back(type_named(a.type));
+    text += "property " + std::string(type_name(attribute_types.back())) + " " + a.name + "\n";
   }
   if (faces) {
     text += "element face " + std::to_string(faces->size()) + "\n";
@@ -541,12 +577,41 @@ void write_ply(std::ostream& out, const std::vector<Vec3>& vertices,
       }
     }
   };
+  // An attribute's value in its type; integers are rounded (interpolated
+  // values of an integer property lie within its range).
+  auto put_scalar = [&](Scalar type, double value) {
+    if (ascii) chunk += ' ';
+    auto put = [&](auto typed) {
+      if (ascii) {
+        if constexpr (std::is_integral_v<decltype(typed)>) {
+          chunk += std::to_string(typed);
+        } else {
+          append_double(chunk, static_cast<double>(typed));
+        }
+      } else {
+        append_binary(chunk, &typed, sizeof(typed), swap);
+      }
+    };
+    const double r = std::round(value);
+    switch (type) {
+      case Scalar::kInt8: put(static_cast<std::int8_t>(r)); break;
+      case Scalar::kUint8: put(static_cast<std::uint8_t>(r)); break;
+      case Scalar::kInt16: put(static_cast<std::int16_t>(r)); break;
+      case Scalar::kUint16: put(static_cast<std::uint16_t>(r)); break;
+      case Scalar::kInt32: put(static_cast<std::int32_t>(r)); break;
+      case Scalar::kUint32: put(static_cast<std::uint32_t>(r)); break;
+      case Scalar::kFloat32: put(static_cast<float>(value)); break;
+      case Scalar::kFloat64: put(value); break;
+    }
+  };
   for (std::size_t i = 0; i < vertices.size(); ++i) {
     put_vector(vertices[i]);
     if (!normals.empty()) {
       if (ascii) chunk += ' ';
       put_vector(normals[i]);
     }
+    for (std::size_t a = 0; a < attributes.size(); ++a)
+      put_scalar(attribute_types[a], attributes[a].values[i]);
     if (ascii) chunk += '\n';
     flush_chunk(false);
   }
@@ -568,6 +633,21 @@ void write_ply(std::ostream& out, const std::vector<Vec3>& vertices,
     }
   }
   flush_chunk(true);
+}
+
+std::vector<const Attribute*> colour_channels(const std::vector<Attribute>& attributes) {
+  std::vector<const Attribute*> channels;
+  for (const char* name : {"red", "green", "blue", "alpha"})
+    for (const Attribute& a : attributes)
+      if (a.name == name) channels.push_back(&a);
+  if (channels.size() < 3) channels.clear();
+  return channels;
+}
+
+double unit_colour(const Attribute& channel, double value) {
+  if (channel.type == "uchar") return value / 255;
+  if (channel.type == "ushort") return value / 65535;
+  return value;
 }
 
 }  // namespace pdd::io

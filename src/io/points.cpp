@@ -36,6 +36,7 @@ PointSet read_points(const std::string& path, ValidationReport* report,
   PointSet points;
   points.points = std::move(raw.points);
   points.normals = std::move(raw.normals);
+  points.attributes = std::move(raw.attributes);
   return io::validate_points_at(std::move(points), path, raw.lines, report, options);
 }
 
@@ -49,16 +50,16 @@ void write_points(const std::string& path, const PointSet& points,
   write_atomically(path, [&](std::ostream& out) {
     switch (format) {
       case io::Format::kPly:
-        io::write_ply(out, points.points, points.normals, nullptr, options.ascii);
+        io::write_ply(out, points.points, points.normals, points.attributes, nullptr, options.ascii);
         break;
       case io::Format::kXyz:
         io::write_xyz(out, points.points, points.normals);
         break;
       case io::Format::kOff:
-        io::write_off(out, points.points, points.normals, {});
+        io::write_off(out, points.points, points.normals, points.attributes, {});
         break;
       case io::Format::kObj:
-        io::write_obj(out, points.points, points.normals, {});
+        io::write_obj(out, points.points, points.normals, points.attributes, {});
         break;
       case io::Format::kVtu:
       case io::Format::kJson:

@@ -160,17 +160,13 @@ void merge_duplicates(PointSet& points, std::vector<std::size_t>& lines, Validat
     }
   }
   if (report.merged_duplicates == 0) return;
-  std::size_t out = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!keep[i]) continue;
-    points.points[out] = points.points[i];
-    if (points.has_normals()) points.normals[out] = points.normals[i];
-    if (!lines.empty()) lines[out] = lines[i];
-    ++out;
+  if (!lines.empty()) {
+    std::size_t out = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (keep[i]) lines[out++] = lines[i];
+    lines.resize(out);
   }
-  points.points.resize(out);
-  if (points.has_normals()) points.normals.resize(out);
-  if (!lines.empty()) lines.resize(out);
+  points.keep(keep);
 }
 
 }  // namespace
@@ -211,6 +207,7 @@ PointSet io::validate_points_at(PointSet points, const std::string& source,
     }
   }
 
+  io::check_attributes(source, points.attributes, points.size(), lines);
   merge_duplicates(points, lines, r);
   if (r.merged_duplicates > 0) {
     std::string warning = source + ": merged " + std::to_string(r.merged_duplicates) +
@@ -266,12 +263,51 @@ PointSet io::validate_points_at(PointSet points, const std::string& source,
   return points;
 }
 
+void io::check_attributes(const std::string& source, const std::vector<Attribute>& attributes,
+                          std::size_t n, const std::vector<std::size_t>& lines) {
+  auto where = [&](std::size_t i) {
+    const std::string point = "point " + std::to_string(i + 1);
+    return lines.empty() ? point : "line " + std::to_string(lines[i]) + " (" + point + ")";
+  };
+  static const char* const kTypes[] = {"char", "uchar", "short", "ushort",
+                                       "int",  "uint",  "float", "double"};
+  for (std::size_t a = 0; a < attributes.size(); ++a) {
+    const Attribute& attribute = attributes[a];
+    const std::string name = "property " + quote(attribute.name);
+    if (attribute.name.empty()) fail(source, "an attribute has no name");
+    for (std::size_t b = 0; b < a; ++b)
+      if (attributes[b].name == attribute.name) fail(source, name + " appears twice");
+    if (std::find(std::begin(kTypes), std::end(kTypes), attribute.type) == std::end(kTypes))
+      fail(source, name + " has the unknown type " + quote(attribute.type));
+    if (attribute.values.size() != n)
+      fail(source, name + " has " + std::to_string(attribute.values.size()) + " values for " +
+                       std::to_string(n) + " points");
+  }
+  // Colours are red, green and blue together (alpha optional); a lone channel
+  // is an ordinary property.
+  for (const Attribute* channel : io::colour_channels(attributes)) {
+    const std::string name = "colour property " + quote(channel->name);
+    const bool real = channel->type == "float" || channel->type == "double";
+    if (!real && channel->type != "uchar" && channel->type != "ushort")
+      fail(source, name + " is " + channel->type +
+                       "; colours must be uchar (0-255), ushort (0-65535) or float/double (0-1)");
+    const double top = channel->type == "uchar" ? 255 : channel->type == "ushort" ? 65535 : 1;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double v = channel->values[i];
+      if (!(v >= 0 && v <= top))
+        fail(source, where(i) + ": the " + name + " is " + io::format_double(v) +
+                         ", outside 0-" + short_number(top));
+    }
+  }
+}
+
 void validate_mesh(const TriangleMesh& mesh, const std::string& source) {
   if (mesh.faces.empty()) throw InputError(source + ": the mesh has no faces");
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
     if (!mesh.vertices[i].allFinite())
       throw InputError(source + ": vertex " + std::to_string(i + 1) +
                        " has a coordinate that is not finite");
+  io::check_attributes(source, mesh.attributes, mesh.vertices.size(), {});
   const auto n = static_cast<long long>(mesh.vertices.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
     for (const int v : mesh.faces[f])

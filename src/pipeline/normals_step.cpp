@@ -25,6 +25,9 @@ std::size_t orient_by_spectral_vote(PointSet& input, const ReconstructOptions& o
 
   ReconstructOptions coarse = options;
   coarse.normals = NormalsMode::kKeep;
+  coarse.outliers.ratio = 0;  // already dropped
+  coarse.trim = {};
+  coarse.attributes = "none";
   coarse.solver.kind = SolverKind::kSpectral;
   coarse.sizing = SizingKind::kUniform;
   coarse.custom_sizing = nullptr;

@@ -111,6 +111,11 @@ std::vector<OptionSpec> make_specs() {
                       [](ReconstructOptions& o) -> int& { return o.normal_neighbors; }, 6,
                       1000));
   s.push_back(number(
+      "outliers",
+      "Drop the points whose mean distance to their 16 nearest points is over this many times "
+      "that of those neighbours, before the solve; they are counted and reported (0: keep all)",
+      [](ReconstructOptions& o) -> double& { return o.outliers.ratio; }, 0, true, 1000));
+  s.push_back(number(
       "value-weight",
       "SSD: weight alpha of f(p) = 0 at the samples (Eq. 15); larger follows the points more "
       "closely, smaller smooths their noise (default: from the input's estimated noise sigma, "
@@ -192,6 +197,35 @@ std::vector<OptionSpec> make_specs() {
       "that the domain's boundary cuts open (0: keep all)",
       [](ReconstructOptions& o) -> double& { return o.min_component_edges; }, 0, true,
       HUGE_VAL));
+  s.push_back(integer(
+      "min-component-samples",
+      "Remove the components of the output, but the largest, that are nearest to fewer than "
+      "this many input points: blobs around stray points (0: keep all)",
+      [](ReconstructOptions& o) -> int& { return o.min_component_samples; }, 0, 1000000000));
+  s.push_back(number(
+      "trim",
+      "Keep only the surface within this many local sample spacings of the samples: an open "
+      "mesh of what was scanned, cut along a smooth curve, instead of a closed surface that "
+      "invents the unseen sides (0: closed; 2 suits most scans)",
+      [](ReconstructOptions& o) -> double& { return o.trim.distance; }, 0, true, 100));
+  s.push_back(number(
+      "trim-holes",
+      "With --trim: unsupported regions less than this many average sample spacings across "
+      "(a scan's gaps) stay closed",
+      [](ReconstructOptions& o) -> double& { return o.trim.holes; }, 0, true, 1e9));
+  s.push_back(number(
+      "trim-islands",
+      "With --trim: pieces of the trimmed surface less than this many average sample spacings "
+      "across are dropped",
+      [](ReconstructOptions& o) -> double& { return o.trim.islands; }, 0, true, 1e9));
+  s.push_back({"attributes", Kind::kText,
+               "Point attributes the output's vertices carry, interpolated from the nearest "
+               "samples (PLY output; colours also to OFF and OBJ): colors, all, none, or "
+               "property names separated by commas",
+               {}, d.attributes,
+               [](ReconstructOptions& o, const std::string& v) {
+                 o.attributes = parse_attribute_selection(v);
+               }});
   s.push_back({"no-cleanup", Kind::kFlag,
                "Output the marching-tetrahedra isosurface as it is, without the edge flips and "
                "needle collapses of the final clean-up",

@@ -1,6 +1,7 @@
 // The progressive loop of §3.1 (Figure 3) and the domain strategies of §4.2.
 #include <pdd/contour.h>
 #include <pdd/errors.h>
+#include <pdd/io.h>
 #include <pdd/pipeline.h>
 #include <pdd/quality.h>
 #include <pdd/refine.h>
@@ -276,6 +277,9 @@ class Run {
     if (options_.min_component_edges > 0)
       stats.open_components = remove_open_components(result_.mesh);
     stats.small_components = remove_small_components(result_.mesh, options_.min_component_edges);
+    stats.unsupported_components =
+        remove_unsupported_components(result_.mesh, points_.points, options_.min_component_samples);
+    result_.trim = trim_to_samples(result_.mesh, points_.points, options_.trim);
     if (options_.cleanup)
       stats.cleanup = cleanup_isosurface(result_.mesh, options_.cleanup_options);
     stats.seconds_cleanup = seconds_since(t);
@@ -395,13 +399,30 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
     threads.emplace(tbb::global_control::max_allowed_parallelism,
                     static_cast<std::size_t>(options.threads));
   const EigenThreads eigen_threads(options.threads);
+  const auto start = Clock::now();
+  // Stray points first: they would become blobs, and skew the normals' estimation.
+  OutlierReport outliers;
+  const std::vector<char> stray = find_outliers(points.points, options.outliers, &outliers);
+  PointSet without_outliers;
+  if (outliers.removed > 0) {
+    without_outliers = points;
+    std::vector<char> keep(stray.size());
+    for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = !stray[i];
+    without_outliers.keep(keep);
+    if (without_outliers.size() < ValidationOptions{}.min_points)
+      throw InputError(options.source + ": only " + std::to_string(without_outliers.size()) +
+                       " points are left once the " + std::to_string(outliers.removed) +
+                       " outliers are dropped; lower or turn off --outliers");
+  }
+  const PointSet& kept = outliers.removed > 0 ? without_outliers : points;
+  PointSet samples;  // the points with the attributes the output carries
+  samples.attributes = select_attributes(kept, options.attributes, options.source);
   // Normals estimated or oriented first when they are missing or untrusted.
   PointSet with_new_normals;
   NormalsReport normals;
-  const auto start = Clock::now();
   const PointSet* prepared = nullptr;
   try {
-    prepared = &detail::prepare_normals(points, options, with_new_normals, normals);
+    prepared = &detail::prepare_normals(kept, options, with_new_normals, normals);
   } catch (const detail::OrientationCancelled&) {
     Result cancelled;
     cancelled.cancelled = true;
@@ -417,7 +438,9 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
   // precision it has at the origin, and a translated input gives the same
   // output, translated, up to rounding.
   const Vec3 centre = bounding_box_centre(input.points);
-  PointSet relative = input;
+  PointSet relative;
+  relative.points = input.points;
+  relative.normals = input.normals;
   for (Vec3& p : relative.points) p -= centre;
   ReconstructOptions resolved = relative_to(options, centre);
   // The input's noise for SSD's automatic value weight, once for all the solves.
@@ -436,8 +459,13 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
       }
       throw InputError("reconstruct: unknown domain strategy");
     }();
+    if (!samples.attributes.empty()) {
+      samples.points = std::move(relative.points);
+      result.mesh.attributes = interpolate_attributes(samples, result.mesh.vertices);
+    }
     for (Vec3& v : result.mesh.vertices) v += centre;
     result.domain.translate(centre);
+    result.outliers = outliers;
     result.noise = std::max(0.0, ssd.noise);
     result.seconds += seconds_before;
     result.normals = normals;

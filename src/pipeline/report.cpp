@@ -37,6 +37,24 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
       << ", \"unreached\": " << result.normals.unreached
       << ", \"segments\": " << result.normals.segments
       << ", \"seconds\": " << number(result.normals.seconds) << "},\n"
+      << "  \"outliers\": {\"ratio\": " << number(result.outliers.ratio)
+      << ", \"neighbors\": " << result.outliers.neighbors
+      << ", \"removed\": " << result.outliers.removed
+      << ", \"median_spacing\": " << number(result.outliers.median_spacing) << "},\n"
+      << "  \"trim\": {\"trimmed\": " << (result.trim.trimmed ? "true" : "false")
+      << ", \"distance\": " << number(options.trim.distance)
+      << ", \"holes\": " << number(options.trim.holes)
+      << ", \"islands\": " << number(options.trim.islands)
+      << ", \"spacing\": " << number(result.trim.spacing)
+      << ", \"area_removed\": " << number(result.trim.area_removed)
+      << ", \"holes_kept\": " << result.trim.holes_kept
+      << ", \"islands_removed\": " << result.trim.islands.components
+      << ", \"island_faces_removed\": " << result.trim.islands.faces
+      << ", \"boundary_loops\": " << result.trim.boundary_loops << "},\n"
+      << "  \"attributes\": [";
+  for (std::size_t a = 0; a < result.mesh.attributes.size(); ++a)
+    out << (a ? ", " : "") << "\"" << result.mesh.attributes[a].name << "\"";
+  out << "],\n"
       << "  \"memory_budget\": {\"bytes\": " << result.budget.bytes
       << ", \"vertices\": " << result.budget.vertices
       << ", \"predicted_vertices\": " << result.budget.predicted_vertices
@@ -76,6 +94,8 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
         << ", \"removed_component_faces\": " << s.small_components.faces
         << ", \"removed_open_components\": " << s.open_components.components
         << ", \"removed_open_component_faces\": " << s.open_components.faces
+        << ", \"removed_unsupported_components\": " << s.unsupported_components.components
+        << ", \"removed_unsupported_component_faces\": " << s.unsupported_components.faces
         << ", \"cleanup_flips\": " << s.cleanup.flips
         << ", \"cleanup_collapses\": " << s.cleanup.collapses << "}";
   }
@@ -100,7 +120,8 @@ std::string statistics_table(const Result& result) {
   if (!result.iterations.empty()) {
     const IterationStats& last = result.iterations.back();
     for (const auto& [r, kind] : {std::pair(last.small_components, "small"),
-                                  std::pair(last.open_components, "open")})
+                                  std::pair(last.open_components, "open"),
+                                  std::pair(last.unsupported_components, "unsupported")})
       if (r.components > 0) {
         std::snprintf(line, sizeof line, "removed %d %s component%s (%d triangles)\n",
                       r.components, kind, r.components == 1 ? "" : "s", r.faces);
@@ -132,6 +153,30 @@ std::string normals_note(const Result& result) {
   char seconds[32];
   std::snprintf(seconds, sizeof seconds, " in %.1f s", n.seconds);
   return line + seconds;
+}
+
+std::string outliers_note(const Result& result) {
+  const OutlierReport& o = result.outliers;
+  if (o.removed == 0) return "";
+  char line[240];
+  std::snprintf(line, sizeof line,
+                "dropped %zu outlier%s: points whose mean distance to their %d nearest is over "
+                "%.3g times that of those neighbours (--outliers; 0 keeps all)",
+                o.removed, o.removed == 1 ? "" : "s", o.neighbors, o.ratio);
+  return line;
+}
+
+std::string trim_note(const Result& result) {
+  const TrimReport& t = result.trim;
+  if (!t.trimmed) return "";
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "trimmed to the samples (--trim): %.1f%% of the area cut away, %d boundary loop%s, "
+                "%d small hole%s kept closed, %d island%s of %d triangles dropped",
+                100 * t.area_removed, t.boundary_loops, t.boundary_loops == 1 ? "" : "s",
+                t.holes_kept, t.holes_kept == 1 ? "" : "s", t.islands.components,
+                t.islands.components == 1 ? "" : "s", t.islands.faces);
+  return line;
 }
 
 std::string memory_budget_note(const Result& result) {

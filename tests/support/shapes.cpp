@@ -1,6 +1,8 @@
 #include "support/shapes.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 
 namespace pdd::test {
@@ -87,6 +89,37 @@ void add_noise(PointSet& points, double sigma, unsigned seed) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> g(0.0, sigma);
   for (Vec3& p : points.points) p += Vec3(g(rng), g(rng), g(rng));
+}
+
+TriangleMesh sphere_mesh(int levels, double radius) {
+  TriangleMesh mesh;
+  mesh.vertices = {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0),
+                   Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0, 0, -1)};
+  mesh.faces = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<int, int>, int> middle;
+    auto mid = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      const auto found = middle.find(key);
+      if (found != middle.end()) return found->second;
+      mesh.vertices.push_back((mesh.vertices[a] + mesh.vertices[b]).normalized());
+      const int id = static_cast<int>(mesh.vertices.size()) - 1;
+      middle.emplace(key, id);
+      return id;
+    };
+    std::vector<std::array<int, 3>> faces;
+    for (const auto& f : mesh.faces) {
+      const int ab = mid(f[0], f[1]), bc = mid(f[1], f[2]), ca = mid(f[2], f[0]);
+      faces.push_back({f[0], ab, ca});
+      faces.push_back({ab, f[1], bc});
+      faces.push_back({ca, bc, f[2]});
+      faces.push_back({ab, bc, ca});
+    }
+    mesh.faces = std::move(faces);
+  }
+  for (Vec3& v : mesh.vertices) v *= radius;
+  return mesh;
 }
 
 }  // namespace pdd::test

@@ -18,6 +18,10 @@ double distance_to_ellipsoid(const Vec3& p, const Vec3& axes);
 // Distance from p to the torus surface.
 double distance_to_torus(const Vec3& p, double R, double r);
 
+// A closed triangle mesh of the sphere: an octahedron whose faces are split
+// into 4^levels triangles, projected onto the sphere; outward-facing.
+TriangleMesh sphere_mesh(int levels, double radius = 1.0);
+
 // Adds Gaussian noise of standard deviation sigma to the positions.
 void add_noise(PointSet& points, double sigma, unsigned seed);
 

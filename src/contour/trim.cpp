@@ -1,0 +1,365 @@
+// Trimming a closed isosurface to the part the samples support (contour.h):
+// the iso-line g = distance of the local sample spacing cut through the
+// triangles, as marching tetrahedra cuts tets one dimension up. Not in the
+// paper; the peers trim by removing whole triangles of low density
+// (PoissonRecon's SurfaceTrimmer, Open3D's quantile filter), which leaves a
+// jagged rim.
+#include <pdd/contour.h>
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "common/nearest_neighbors.h"
+#include "common/union_find.h"
+
+namespace pdd {
+
+namespace {
+
+using detail::find_root;
+using detail::singletons;
+
+// Each sample's local spacing: the mean nearest-neighbour distance over its
+// `k` nearest samples; and the samples' average spacing (mean nearest-neighbour distance).
+struct Spacing {
+  std::vector<double> local;
+  double average = 0;
+};
+
+Spacing sample_spacing(const std::vector<Vec3>& samples, const detail::NearestNeighbors& tree,
+                       int k) {
+  const std::size_t n = samples.size();
+  std::vector<double> nearest(n, 0.0);
+  tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+    const std::vector<int> two = tree.query(samples[i], 2);
+    for (int j : two)
+      if (static_cast<std::size_t>(j) != i) nearest[i] = (samples[j] - samples[i]).norm();
+  });
+  Spacing s;
+  s.local.resize(n);
+  tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+    const std::vector<int> around = tree.query(samples[i], k);
+    double sum = 0;
+    for (int j : around) sum += nearest[j];
+    s.local[i] = sum / static_cast<double>(around.size());
+  });
+  s.average = std::accumulate(nearest.begin(), nearest.end(), 0.0) / static_cast<double>(n);
+  return s;
+}
+
+// Undirected edges of the mesh (a < b), sorted, and each vertex's neighbours.
+std::vector<std::vector<int>> vertex_neighbours(const TriangleMesh& mesh) {
+  std::vector<std::vector<int>> around(mesh.vertices.size());
+  for (const auto& f : mesh.faces)
+    for (int i = 0; i < 3; ++i) {
+      around[f[i]].push_back(f[(i + 1) % 3]);
+      around[f[i]].push_back(f[(i + 2) % 3]);
+    }
+  for (auto& a : around) {
+    std::sort(a.begin(), a.end());
+    a.erase(std::unique(a.begin(), a.end()), a.end());
+  }
+  return around;
+}
+
+double bounding_diagonal(const std::vector<Vec3>& x, const std::vector<int>& members) {
+  Vec3 lo = x[members[0]], hi = lo;
+  for (int v : members) {
+    lo = lo.cwiseMin(x[v]);
+    hi = hi.cwiseMax(x[v]);
+  }
+  return (hi - lo).norm();
+}
+
+double area(const TriangleMesh& mesh) {
+  double total = 0;
+  for (const auto& f : mesh.faces)
+    total += 0.5 * (mesh.vertices[f[1]] - mesh.vertices[f[0]])
+                       .cross(mesh.vertices[f[2]] - mesh.vertices[f[0]])
+                       .norm();
+  return total;
+}
+
+enum State : char { kIn = 0, kOn = 1, kOut = 2 };
+
+double min_angle_degrees(const Vec3& a, const Vec3& b, const Vec3& c) {
+  auto angle = [](const Vec3& p, const Vec3& q, const Vec3& r) {
+    const Vec3 u = q - p, v = r - p;
+    return std::atan2(u.cross(v).norm(), u.dot(v));
+  };
+  return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)}) * 180 / M_PI;
+}
+
+// The cut's rim made smooth: ears (triangles with two boundary edges, a
+// zigzag of the rim) whose smallest angle is under 30 degrees go, then each
+// rim vertex moves halfway to the midpoint of its two rim neighbours (twice),
+// which stays on the surface to second order where the rim is smooth. Unused
+// vertices are dropped.
+void smooth_boundary(TriangleMesh& mesh) {
+  auto boundary_edges = [&] {
+    std::map<std::pair<int, int>, int> count;
+    for (const auto& f : mesh.faces)
+      for (int i = 0; i < 3; ++i) ++count[std::minmax(f[i], f[(i + 1) % 3])];
+    return count;
+  };
+  for (int pass = 0; pass < 3; ++pass) {
+    const auto count = boundary_edges();
+    std::vector<std::array<int, 3>> kept;
+    for (const auto& f : mesh.faces) {
+      int open = 0;
+      for (int i = 0; i < 3; ++i) open += count.at(std::minmax(f[i], f[(i + 1) % 3])) == 1;
+      if (open == 2 &&
+          min_angle_degrees(mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]]) < 30)
+        continue;
+      kept.push_back(f);
+    }
+    if (kept.size() == mesh.faces.size()) break;
+    mesh.faces = std::move(kept);
+  }
+  const auto count = boundary_edges();
+  std::vector<std::vector<int>> rim(mesh.vertices.size());
+  for (const auto& [edge, c] : count)
+    if (c == 1) {
+      rim[edge.first].push_back(edge.second);
+      rim[edge.second].push_back(edge.first);
+    }
+  for (int round = 0; round < 2; ++round) {
+    std::vector<Vec3> moved = mesh.vertices;
+    for (std::size_t v = 0; v < rim.size(); ++v)
+      if (rim[v].size() == 2)
+        moved[v] = 0.5 * mesh.vertices[v] +
+                   0.25 * (mesh.vertices[rim[v][0]] + mesh.vertices[rim[v][1]]);
+    mesh.vertices = std::move(moved);
+  }
+  std::vector<int> index(mesh.vertices.size(), -1);
+  std::vector<Vec3> used;
+  for (auto& f : mesh.faces)
+    for (int& v : f) {
+      if (index[v] < 0) {
+        index[v] = static_cast<int>(used.size());
+        used.push_back(mesh.vertices[v]);
+      }
+      v = index[v];
+    }
+  mesh.vertices = std::move(used);
+}
+
+}  // namespace
+
+int boundary_loops(const TriangleMesh& mesh) {
+  // Boundary edges: directed edges whose opposite is absent. Loops: their
+  // components through shared vertices.
+  std::map<std::pair<int, int>, int> directed;
+  for (const auto& f : mesh.faces)
+    for (int i = 0; i < 3; ++i) ++directed[{f[i], f[(i + 1) % 3]}];
+  std::vector<int> parent = singletons(mesh.vertices.size());
+  std::vector<char> on_boundary(mesh.vertices.size(), 0);
+  for (const auto& [edge, count] : directed) {
+    if (directed.count({edge.second, edge.first})) continue;
+    on_boundary[edge.first] = on_boundary[edge.second] = 1;
+    parent[find_root(parent, edge.first)] = find_root(parent, edge.second);
+  }
+  int loops = 0;
+  for (std::size_t v = 0; v < parent.size(); ++v)
+    if (on_boundary[v] && find_root(parent, static_cast<int>(v)) == static_cast<int>(v)) ++loops;
+  return loops;
+}
+
+TrimReport trim_to_samples(TriangleMesh& mesh, const std::vector<Vec3>& samples,
+                           const TrimOptions& options) {
+  for (const auto& [value, name] : {std::pair(options.distance, "distance"),
+                                    std::pair(options.holes, "holes"),
+                                    std::pair(options.islands, "islands")})
+    if (!(value >= 0) || !std::isfinite(value))
+      throw std::invalid_argument(std::string("trim_to_samples: ") + name +
+                                  " must be a number >= 0");
+  TrimReport report;
+  if (options.distance == 0 || mesh.faces.empty()) return report;
+  if (samples.size() < 2) throw std::invalid_argument("trim_to_samples: fewer than two samples");
+  report.trimmed = true;
+  const double area_before = area(mesh);
+
+  // g at each vertex: its distance to the nearest sample in that sample's
+  // local spacings, then smoothed over the mesh so that the cut is a smooth curve.
+  const detail::NearestNeighbors tree(samples);
+  const Spacing spacing = sample_spacing(samples, tree, 8);
+  report.spacing = spacing.average;
+  const std::size_t n = mesh.vertices.size();
+  // The distance inside a triangle exceeds that at its corners where it runs
+  // between samples: each vertex takes the largest of its own and those of
+  // the midpoints of its edges.
+  const std::vector<std::vector<int>> around = vertex_neighbours(mesh);
+  auto distance = [&](const Vec3& x) {
+    const int j = tree.query(x, 1)[0];
+    return (x - samples[j]).norm() / spacing.local[j];
+  };
+  std::vector<double> g(n);
+  tbb::parallel_for(std::size_t(0), n, [&](std::size_t v) {
+    g[v] = distance(mesh.vertices[v]);
+    for (int w : around[v])
+      g[v] = std::max(g[v], distance(0.5 * (mesh.vertices[v] + mesh.vertices[w])));
+  });
+  for (int round = 0; round < 2; ++round) {
+    std::vector<double> smoothed(n);
+    for (std::size_t v = 0; v < n; ++v) {
+      double sum = 0;
+      for (int w : around[v]) sum += g[w];
+      smoothed[v] = around[v].empty() ? g[v] : 0.5 * g[v] + 0.5 * sum / around[v].size();
+    }
+    g = std::move(smoothed);
+  }
+  const double T = options.distance;
+  std::vector<char> state(n);
+  for (std::size_t v = 0; v < n; ++v) state[v] = g[v] < T ? kIn : kOut;
+
+  // Unsupported regions smaller than `holes` spacings across are a scan's
+  // gaps: they stay closed.
+  {
+    std::vector<int> parent = singletons(n);
+    for (std::size_t v = 0; v < n; ++v)
+      if (state[v] == kOut)
+        for (int w : around[v])
+          if (state[w] == kOut) parent[find_root(parent, static_cast<int>(v))] = find_root(parent, w);
+    std::map<int, std::vector<int>> regions;
+    for (std::size_t v = 0; v < n; ++v)
+      if (state[v] == kOut) regions[find_root(parent, static_cast<int>(v))].push_back(static_cast<int>(v));
+    for (const auto& [root, members] : regions) {
+      if (bounding_diagonal(mesh.vertices, members) >= options.holes * spacing.average) continue;
+      ++report.holes_kept;
+      for (int v : members) state[v] = kIn;
+    }
+  }
+
+  // Snapping: a vertex whose nearest crossing lies within a quarter of its edge
+  // takes the iso-line through itself, so that the cut makes no sliver; only
+  // where its link crosses the line twice (the cut stays manifold) and no
+  // neighbour did the same.
+  auto crossing = [&](int a, int b) {  // parameter from a to b of g = T
+    return (T - g[a]) / (g[b] - g[a]);
+  };
+  constexpr double kSnap = 0.25;
+  std::vector<std::vector<std::array<int, 2>>> link(n);  // the opposite edge of each face at v
+  for (const auto& f : mesh.faces)
+    for (int i = 0; i < 3; ++i) link[f[i]].push_back({f[(i + 1) % 3], f[(i + 2) % 3]});
+  for (std::size_t v = 0; v < n; ++v) {
+    double nearest = 1;
+    bool neighbour_on = false;
+    for (int w : around[v]) {
+      neighbour_on = neighbour_on || state[w] == kOn;
+      if ((state[v] == kIn) == (state[w] == kOut) && state[w] != kOn) {
+        const double t = crossing(static_cast<int>(v), w);
+        nearest = std::min(nearest, state[v] == kIn ? t : 1 - t);
+      }
+    }
+    if (neighbour_on || nearest >= kSnap) continue;
+    int changes = 0;
+    for (const auto& e : link[v]) changes += (state[e[0]] == kOut) != (state[e[1]] == kOut);
+    if (changes == 2) state[v] = kOn;
+  }
+
+  // The cut: each triangle clipped to its kept part (in and on vertices),
+  // one new vertex per crossed edge, quadrangles split along the shorter diagonal.
+  TriangleMesh cut;
+  std::vector<int> index(n, -1);
+  auto keep_vertex = [&](int v) {
+    if (index[v] < 0) {
+      index[v] = static_cast<int>(cut.vertices.size());
+      cut.vertices.push_back(mesh.vertices[v]);
+    }
+    return index[v];
+  };
+  std::map<std::pair<int, int>, int> crossings;
+  auto cross = [&](int a, int b) {
+    const std::pair<int, int> key(std::min(a, b), std::max(a, b));
+    const auto found = crossings.find(key);
+    if (found != crossings.end()) return found->second;
+    const double t = crossing(key.first, key.second);
+    const int id = static_cast<int>(cut.vertices.size());
+    cut.vertices.push_back(mesh.vertices[key.first] +
+                           t * (mesh.vertices[key.second] - mesh.vertices[key.first]));
+    crossings.emplace(key, id);
+    return id;
+  };
+  for (const auto& f : mesh.faces) {
+    int outside = 0, inside = 0;
+    for (int v : f) {
+      outside += state[v] == kOut;
+      inside += state[v] == kIn;
+    }
+    if (inside == 0) continue;  // nothing of it is supported (or only its on corners)
+    if (outside == 0) {
+      cut.faces.push_back({keep_vertex(f[0]), keep_vertex(f[1]), keep_vertex(f[2])});
+      continue;
+    }
+    std::vector<int> polygon;
+    for (int i = 0; i < 3; ++i) {
+      const int a = f[i], b = f[(i + 1) % 3];
+      if (state[a] != kOut) polygon.push_back(keep_vertex(a));
+      if ((state[a] == kIn && state[b] == kOut) || (state[a] == kOut && state[b] == kIn))
+        polygon.push_back(cross(a, b));
+    }
+    if (polygon.size() == 3) {
+      cut.faces.push_back({polygon[0], polygon[1], polygon[2]});
+    } else if (polygon.size() == 4) {
+      const auto& x = cut.vertices;
+      if ((x[polygon[0]] - x[polygon[2]]).squaredNorm() <=
+          (x[polygon[1]] - x[polygon[3]]).squaredNorm()) {
+        cut.faces.push_back({polygon[0], polygon[1], polygon[2]});
+        cut.faces.push_back({polygon[0], polygon[2], polygon[3]});
+      } else {
+        cut.faces.push_back({polygon[0], polygon[1], polygon[3]});
+        cut.faces.push_back({polygon[1], polygon[2], polygon[3]});
+      }
+    }
+  }
+
+  // Islands: pieces of the cut surface less than `islands` spacings across.
+  {
+    std::vector<int> parent = singletons(cut.vertices.size());
+    for (const auto& f : cut.faces)
+      for (int i = 0; i < 2; ++i) parent[find_root(parent, f[i])] = find_root(parent, f[i + 1]);
+    std::map<int, std::vector<int>> pieces;
+    for (const auto& f : cut.faces)
+      for (int v : f) pieces[find_root(parent, v)].push_back(v);
+    std::vector<char> drop(cut.vertices.size(), 0);
+    for (const auto& [root, members] : pieces)
+      if (bounding_diagonal(cut.vertices, members) < options.islands * spacing.average) {
+        drop[root] = 1;
+        ++report.islands.components;
+      }
+    if (report.islands.components > 0) {
+      TriangleMesh kept;
+      std::vector<int> renumber(cut.vertices.size(), -1);
+      for (const auto& f : cut.faces) {
+        if (drop[find_root(parent, f[0])]) {
+          ++report.islands.faces;
+          continue;
+        }
+        std::array<int, 3> g3;
+        for (int i = 0; i < 3; ++i) {
+          if (renumber[f[i]] < 0) {
+            renumber[f[i]] = static_cast<int>(kept.vertices.size());
+            kept.vertices.push_back(cut.vertices[f[i]]);
+          }
+          g3[i] = renumber[f[i]];
+        }
+        kept.faces.push_back(g3);
+      }
+      cut = std::move(kept);
+    }
+  }
+  smooth_boundary(cut);
+  mesh = std::move(cut);
+  report.area_removed = area_before > 0 ? 1 - area(mesh) / area_before : 0;
+  report.boundary_loops = boundary_loops(mesh);
+  return report;
+}
+
+}  // namespace pdd
