@@ -150,7 +150,8 @@ TEST(Attributes, AColourRampComesOutAsAColourRamp) {
 
 TEST(Components, ThoseNearestToTooFewSamplesAreRemoved) {
   // A sphere and a small one beside it that only 3 samples support (a blob
-  // around stray points), and a third supported by 200.
+  // around stray points), a third supported by 200, and a large bubble with
+  // 15 samples, a hundredth of the others' density (around a cluster of strays).
   TriangleMesh mesh = test::sphere_mesh(3);
   auto add = [&](const TriangleMesh& part) {
     const int base = static_cast<int>(mesh.vertices.size());
@@ -161,18 +162,25 @@ TEST(Components, ThoseNearestToTooFewSamplesAreRemoved) {
   for (Vec3& v : blob.vertices) v += Vec3(1.5, 0, 0);
   TriangleMesh part = test::sphere_mesh(2, 0.3);
   for (Vec3& v : part.vertices) v += Vec3(-2, 0, 0);
+  TriangleMesh bubble = test::sphere_mesh(2, 0.5);  // 15 samples: enough, but too sparse
+  for (Vec3& v : bubble.vertices) v += Vec3(0, 3, 0);
   add(blob);
   add(part);
+  add(bubble);
   std::vector<Vec3> samples = test::sample_sphere(2000).points;
   for (const Vec3& p : test::sample_sphere(3, 0.1, Vec3(1.5, 0, 0)).points) samples.push_back(p);
   for (const Vec3& p : test::sample_sphere(200, 0.3, Vec3(-2, 0, 0)).points) samples.push_back(p);
+  for (const Vec3& p : test::sample_sphere(15, 0.5, Vec3(0, 3, 0)).points) samples.push_back(p);
   const std::size_t faces = mesh.faces.size();
   const RemovedComponents r = remove_unsupported_components(mesh, samples, 10);
-  EXPECT_EQ(r.components, 1);
-  EXPECT_EQ(static_cast<std::size_t>(r.faces), blob.faces.size());
-  EXPECT_EQ(mesh.faces.size(), faces - blob.faces.size());
+  EXPECT_EQ(r.components, 2);
+  EXPECT_EQ(static_cast<std::size_t>(r.faces), blob.faces.size() + bubble.faces.size());
+  EXPECT_EQ(mesh.faces.size(), faces - blob.faces.size() - bubble.faces.size());
   EXPECT_EQ(surface_topology(mesh).components, 2u);
-  for (const Vec3& v : mesh.vertices) EXPECT_GT((v - Vec3(1.5, 0, 0)).norm(), 0.2);
+  for (const Vec3& v : mesh.vertices) {
+    EXPECT_GT((v - Vec3(1.5, 0, 0)).norm(), 0.2);
+    EXPECT_GT((v - Vec3(0, 3, 0)).norm(), 0.6);
+  }
   EXPECT_THROW(remove_unsupported_components(mesh, samples, -1), std::invalid_argument);
 }
 

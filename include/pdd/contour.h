@@ -67,11 +67,13 @@ RemovedComponents remove_small_components(TriangleMesh& mesh, double min_edges);
 // boundary (a one-view scan's invented back) stays. Not in the paper.
 RemovedComponents remove_open_components(TriangleMesh& mesh);
 
-// Removes the components, but the largest, that fewer than min_samples of
-// `samples` support: those whose vertices are nearest to fewer samples. The
-// blobs that a few stray points left near the surface (outliers the test of
-// outliers.h could not tell from the surface) make such components; a part
-// of the shape is supported by every sample on it. 0 keeps everything.
+// Removes the components, but the largest, that too few of `samples`
+// support (are nearest to): fewer than min_samples, or fewer per unit area
+// than a tenth of the whole mesh's samples per unit area. The blobs and
+// bubbles that stray points left (outliers the test of outliers.h could not
+// tell from the surface, clusters of them inside a solid) make such
+// components; a part of the shape is supported by every sample on it.
+// min_samples = 0 keeps everything.
 // Throws std::invalid_argument if min_samples is negative.
 RemovedComponents remove_unsupported_components(TriangleMesh& mesh,
                                                 const std::vector<Vec3>& samples,

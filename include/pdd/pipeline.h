@@ -92,8 +92,9 @@ struct ReconstructOptions {
                                    // cut open by the domain's boundary but the largest
                                    // (contour.h, remove_small_components and
                                    // remove_open_components); 0: all kept
-  int min_component_samples = 10;  // components but the largest nearest to fewer input points
-                                   // are removed: blobs around stray points (contour.h,
+  int min_component_samples = 10;  // components but the largest nearest to fewer input points,
+                                   // or to a tenth of the mesh's points per area, are removed:
+                                   // blobs and bubbles around stray points (contour.h,
                                    // remove_unsupported_components); 0: all kept
   TrimOptions trim;            // distance 0 (the default): the closed surface; otherwise cut to
                                // the samples' support after the small components went (contour.h)

@@ -136,11 +136,22 @@ RemovedComponents remove_unsupported_components(TriangleMesh& mesh,
   tbb::parallel_for(std::size_t(0), samples.size(), [&](std::size_t i) {
     nearest_root[i] = vertex_root[tree.query(samples[i], 1)[0]];
   });
-  std::vector<int> support(mesh.vertices.size(), 0);
+  std::vector<double> support(mesh.vertices.size(), 0), area(mesh.vertices.size(), 0);
   for (int r : nearest_root) ++support[r];
+  double total_area = 0;
+  for (const auto& f : mesh.faces) {
+    const Vec3& a = mesh.vertices[f[0]];
+    const double twice = (mesh.vertices[f[1]] - a).cross(mesh.vertices[f[2]] - a).norm();
+    area[c.root_of[f[0]]] += 0.5 * twice;
+    total_area += 0.5 * twice;
+  }
+  // Samples per unit area over the whole mesh, which a part of the shape has
+  // about (more where the closed surface invents nothing).
+  const double density = static_cast<double>(samples.size()) / total_area;
   std::vector<char> unsupported(mesh.vertices.size(), 0);
   for (std::size_t r = 0; r < mesh.vertices.size(); ++r)
-    unsupported[r] = c.faces[r] > 0 && static_cast<int>(r) != c.largest && support[r] < min_samples;
+    unsupported[r] = c.faces[r] > 0 && static_cast<int>(r) != c.largest &&
+                     (support[r] < min_samples || support[r] < 0.1 * density * area[r]);
   return remove_marked(mesh, c, unsupported);
 }
 

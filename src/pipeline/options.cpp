@@ -200,7 +200,8 @@ std::vector<OptionSpec> make_specs() {
   s.push_back(integer(
       "min-component-samples",
       "Remove the components of the output, but the largest, that are nearest to fewer than "
-      "this many input points: blobs around stray points (0: keep all)",
+      "this many input points, or to fewer per area than a tenth of the whole output's: blobs "
+      "and bubbles around stray points (0: keep all)",
       [](ReconstructOptions& o) -> int& { return o.min_component_samples; }, 0, 1000000000));
   s.push_back(number(
       "trim",
