@@ -80,8 +80,15 @@ void reconstruct(ReconstructArgs& args) {
   args.options.source = args.input;
 
   args.options.progress = progress_printer(args.quiet);
+  // All outputs or none, the iterations' too: each is written to a temporary, then all are
+  // renamed (unless the run fails or a signal comes: the temporaries then go with `outputs`).
+  StagedOutputs outputs;
+  on_interrupt([&outputs] { outputs.discard(); });
+  struct Forget {
+    ~Forget() { on_interrupt({}); }
+  } forget;
   if (!args.iterations_dir.empty())
-    args.options.on_iteration = iteration_files(args.iterations_dir, args.ascii);
+    args.options.on_iteration = iteration_files(args.iterations_dir, args.ascii, &outputs);
   const Result result = pdd::reconstruct(points, args.options);
   if (result.cancelled) throw Interrupted{};
   if (!args.quiet && ::isatty(STDERR_FILENO)) std::cerr << "\n";
@@ -92,10 +99,7 @@ void reconstruct(ReconstructArgs& args) {
     throw std::runtime_error("reconstruct: " + args.input +
                              ": the isosurface is empty (the solver found no surface)");
 
-  // All outputs or none: each is written to a temporary, then all are renamed
-  // (unless a signal came meanwhile: the temporaries then go with `outputs`).
   begin_outputs();
-  StagedOutputs outputs;
   write_mesh(args.output, result.mesh, {args.ascii, &outputs});
   if (!args.domain_output.empty())
     write_domain_vtu(args.domain_output, result.domain.mesh(), result.domain.f(), {}, {},

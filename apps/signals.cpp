@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <mutex>
+#include <utility>
 #include <chrono>
 #include <thread>
 
@@ -13,6 +15,8 @@ namespace {
 
 std::atomic<int> received{0};
 std::atomic<bool> writing{false};
+std::mutex cleanup_mutex;
+std::function<void()> cleanup;
 
 sigset_t cancel_signals() {
   sigset_t set;
@@ -33,6 +37,10 @@ void watch() {
   while (std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   if (writing) return;
+  {
+    const std::lock_guard<std::mutex> lock(cleanup_mutex);
+    if (cleanup) cleanup();
+  }
   static const char message[] = "pdd: interrupted\n";
   [[maybe_unused]] const auto ignored = ::write(STDERR_FILENO, message, sizeof message - 1);
   ::_exit(cancel_exit_code());
@@ -60,5 +68,10 @@ bool cancel_requested() { return received != 0; }
 int cancel_exit_code() { return 128 + received; }
 
 void begin_outputs() { writing = true; }
+
+void on_interrupt(std::function<void()> action) {
+  const std::lock_guard<std::mutex> lock(cleanup_mutex);
+  cleanup = std::move(action);
+}
 
 }  // namespace pdd::cli

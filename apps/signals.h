@@ -2,6 +2,8 @@
 // output and exit with 130 or 143.
 #pragma once
 
+#include <functional>
+
 namespace pdd::cli {
 
 // Thrown by a command that stopped because of a signal; main exits with
@@ -26,5 +28,10 @@ int cancel_exit_code();
 // stage within two seconds of the signal is ended by the watcher itself,
 // which it can do at once since nothing has been written yet.
 void begin_outputs();
+
+// What the watcher does before it ends the process on a signal (remove the
+// run's staged temporaries); empty to do nothing. Set it for the life of the
+// objects it touches only.
+void on_interrupt(std::function<void()> cleanup);
 
 }  // namespace pdd::cli

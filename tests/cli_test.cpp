@@ -150,6 +150,7 @@ TEST_F(CliTest, PointsWithoutNormalsGetThemAndSaySo) {
 TEST_F(CliTest, SignalsCancelTheRunAndLeaveNoOutput) {
   write_points(path("in.xyz"), test::sample_sphere(20000));
   // SIGINT during the multigrid run, SIGTERM during CHOLMOD's (METIS's) factorizations;
+  // the iterations already saved go too, with the folder made for them;
   // `timeout` sends it after 1.5 s and returns pdd's own exit code, and a second
   // `timeout` kills a run that would hang instead.
   for (const auto& [signal, linear, code] : {std::tuple("INT", "multigrid", 130),
@@ -158,6 +159,7 @@ TEST_F(CliTest, SignalsCancelTheRunAndLeaveNoOutput) {
         "timeout", std::string("-s KILL 60 timeout --preserve-status -s ") + signal + " 1.5 '" +
                        PDD_BINARY + "' reconstruct " + quoted_path("in.xyz") + " -o " +
                        quoted_path("out.ply") + " --stats " + quoted_path("out.json") +
+                       " --save-iterations " + quoted_path("iterations") +
                        " --target-edge 0.012 --linear " + linear + " --quiet");
     EXPECT_EQ(run.code, code) << signal << ": " << run.err;
     EXPECT_NE(run.err.find("pdd: interrupted"), std::string::npos) << run.err;

@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <functional>
 #include <iosfwd>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -190,14 +191,23 @@ class StagedOutputs {
   StagedOutputs& operator=(const StagedOutputs&) = delete;
   ~StagedOutputs();
   void add(const std::string& path, const std::function<void(std::ostream&)>& write);
+  // Creates `folder` (and its missing parents) for outputs to be staged in it;
+  // unless committed, the folders it created are removed again when empty.
+  void create_folder(const std::string& folder);
   void commit();
+  // Removes the temporaries and the folders created so far, at once; safe to
+  // call from another thread while add() runs (a watcher about to end the
+  // process on a signal).
+  void discard();
 
  private:
+  std::mutex mutex_;
   struct Staged {
     std::string path;
     std::string temporary;
   };
   std::vector<Staged> staged_;
+  std::vector<std::string> created_folders_;  // outermost first
 };
 
 // Checks, before any work is done, that `path` has an extension write_mesh

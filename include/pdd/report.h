@@ -12,6 +12,8 @@
 
 namespace pdd {
 
+class StagedOutputs;  // io.h
+
 // A JSON object: the options that shaped the run, per-iteration statistics
 // (vertices, vertices around the isosurface, parsimony, isovertices,
 // triangles, solver iterations and residual, seconds per stage, triangle
@@ -38,7 +40,10 @@ std::string trim_note(const Result& result);
 // --save-iterations: writes the isosurface (.ply) and the domain with f (.vtu)
 // of every iteration into `folder`, created if missing (Figure 7). InputError
 // at once when `folder` cannot be (check_output_path, OutputKind::kFolder).
-IterationCallback iteration_files(const std::string& folder, bool ascii);
+// With `staged`, the files (and the folder, when created) appear only when
+// staged->commit() does, with the run's other outputs.
+IterationCallback iteration_files(const std::string& folder, bool ascii,
+                                  StagedOutputs* staged = nullptr);
 
 // `pdd quality MESH [--json]`: triangle quality (angles, histogram) and the
 // surface's checks (manifold, closed, components, genus); `file` names it.

@@ -29,8 +29,10 @@ py::dict reconstruct(const py::handle& points, const py::handle& normals,
   PointSet given = point_set_from_arrays(points, normals);
   given.attributes = attributes_from_list(attributes);
   const PointSet input = validate_points(std::move(given), "points", &report);
+  // The iteration files and the domain appear together, only when the run succeeds.
+  StagedOutputs outputs;
   if (!save_iterations.empty())
-    run_options.on_iteration = iteration_files(save_iterations, false);
+    run_options.on_iteration = iteration_files(save_iterations, false, &outputs);
 
   // Called between stages on the calling thread: takes the GIL, lets Python
   // handle pending signals (Ctrl-C raises KeyboardInterrupt there), then asks
@@ -76,9 +78,11 @@ py::dict reconstruct(const py::handle& points, const py::handle& normals,
   if (result.cancelled) return out;
   if (result.mesh.faces.empty())
     throw SolverError("points: the isosurface is empty (the solver found no surface)");
-  if (!domain_out.empty()) {
+  {
     py::gil_scoped_release release;
-    write_domain_vtu(domain_out, result.domain.mesh(), result.domain.f());
+    if (!domain_out.empty())
+      write_domain_vtu(domain_out, result.domain.mesh(), result.domain.f(), {}, {}, &outputs);
+    outputs.commit();
   }
   out["stats"] = statistics_json(result, run_options);
   out["table"] = statistics_table(result);

@@ -122,12 +122,31 @@ std::string write_temporary(const std::string& path,
 
 }  // namespace
 
-StagedOutputs::~StagedOutputs() {
+StagedOutputs::~StagedOutputs() { discard(); }
+
+void StagedOutputs::discard() {
+  const std::lock_guard<std::mutex> lock(mutex_);
   for (const Staged& s : staged_) ::unlink(s.temporary.c_str());
+  for (auto f = created_folders_.rbegin(); f != created_folders_.rend(); ++f) ::rmdir(f->c_str());
+  staged_.clear();
+  created_folders_.clear();
+}
+
+void StagedOutputs::create_folder(const std::string& folder) {
+  std::vector<std::string> missing;
+  for (std::filesystem::path p = folder; !p.empty() && !std::filesystem::exists(p);
+       p = p.parent_path()) {
+    missing.push_back(p.string());
+    if (p == p.parent_path()) break;
+  }
+  std::filesystem::create_directories(folder);
+  const std::lock_guard<std::mutex> lock(mutex_);
+  created_folders_.insert(created_folders_.end(), missing.rbegin(), missing.rend());
 }
 
 void StagedOutputs::add(const std::string& path, const std::function<void(std::ostream&)>& write) {
   const std::string temporary = write_temporary(path, write);
+  const std::lock_guard<std::mutex> lock(mutex_);
   staged_.push_back({path, temporary});
 }
 
@@ -144,6 +163,7 @@ void StagedOutputs::commit() {
                              std::strerror(error));
   }
   staged_.clear();
+  created_folders_.clear();
 }
 
 void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {

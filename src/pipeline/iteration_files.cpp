@@ -7,15 +7,19 @@
 
 namespace pdd {
 
-IterationCallback iteration_files(const std::string& folder, bool ascii) {
+IterationCallback iteration_files(const std::string& folder, bool ascii, StagedOutputs* staged) {
   check_output_path(folder, OutputKind::kFolder);
-  std::filesystem::create_directories(folder);
-  return [folder, ascii](const IterationStats& stats, const Domain& domain,
-                         const TriangleMesh& isosurface) {
+  if (staged) {
+    staged->create_folder(folder);
+  } else {
+    std::filesystem::create_directories(folder);
+  }
+  return [folder, ascii, staged](const IterationStats& stats, const Domain& domain,
+                                 const TriangleMesh& isosurface) {
     char name[64];
     std::snprintf(name, sizeof name, "/iteration_%02d", stats.iteration);
-    write_mesh(folder + name + "_isosurface.ply", isosurface, {ascii});
-    write_domain_vtu(folder + name + "_domain.vtu", domain.mesh(), domain.f());
+    write_mesh(folder + name + "_isosurface.ply", isosurface, {ascii, staged});
+    write_domain_vtu(folder + name + "_domain.vtu", domain.mesh(), domain.f(), {}, {}, staged);
   };
 }
 
