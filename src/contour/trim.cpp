@@ -102,19 +102,36 @@ double min_angle_degrees(const Vec3& a, const Vec3& b, const Vec3& c) {
 // rim vertex moves halfway to the midpoint of its two rim neighbours (twice),
 // which stays on the surface to second order where the rim is smooth. Unused
 // vertices are dropped.
+// The edges (a < b) that one face of `mesh` has, sorted (a mesh's worth of
+// pairs sorted, not a map of them: millions of faces at scale).
+std::vector<std::pair<int, int>> boundary_edges(const TriangleMesh& mesh) {
+  std::vector<std::pair<int, int>> all;
+  all.reserve(3 * mesh.faces.size());
+  for (const auto& f : mesh.faces)
+    for (int i = 0; i < 3; ++i)
+      all.emplace_back(std::min(f[i], f[(i + 1) % 3]), std::max(f[i], f[(i + 1) % 3]));
+  std::sort(all.begin(), all.end());
+  std::vector<std::pair<int, int>> once;
+  for (std::size_t i = 0; i < all.size();) {
+    std::size_t j = i + 1;
+    while (j < all.size() && all[j] == all[i]) ++j;
+    if (j - i == 1) once.push_back(all[i]);
+    i = j;
+  }
+  return once;
+}
+
 void smooth_boundary(TriangleMesh& mesh) {
-  auto boundary_edges = [&] {
-    std::map<std::pair<int, int>, int> count;
-    for (const auto& f : mesh.faces)
-      for (int i = 0; i < 3; ++i) ++count[std::minmax(f[i], f[(i + 1) % 3])];
-    return count;
-  };
   for (int pass = 0; pass < 3; ++pass) {
-    const auto count = boundary_edges();
+    const std::vector<std::pair<int, int>> rim_edges = boundary_edges(mesh);
+    auto on_rim = [&](int a, int b) {
+      return std::binary_search(rim_edges.begin(), rim_edges.end(),
+                                std::pair<int, int>(std::min(a, b), std::max(a, b)));
+    };
     std::vector<std::array<int, 3>> kept;
     for (const auto& f : mesh.faces) {
       int open = 0;
-      for (int i = 0; i < 3; ++i) open += count.at(std::minmax(f[i], f[(i + 1) % 3])) == 1;
+      for (int i = 0; i < 3; ++i) open += on_rim(f[i], f[(i + 1) % 3]);
       if (open == 2 &&
           min_angle_degrees(mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]]) < 30)
         continue;
@@ -123,13 +140,11 @@ void smooth_boundary(TriangleMesh& mesh) {
     if (kept.size() == mesh.faces.size()) break;
     mesh.faces = std::move(kept);
   }
-  const auto count = boundary_edges();
   std::vector<std::vector<int>> rim(mesh.vertices.size());
-  for (const auto& [edge, c] : count)
-    if (c == 1) {
-      rim[edge.first].push_back(edge.second);
-      rim[edge.second].push_back(edge.first);
-    }
+  for (const auto& [a, b] : boundary_edges(mesh)) {
+    rim[a].push_back(b);
+    rim[b].push_back(a);
+  }
   for (int round = 0; round < 2; ++round) {
     std::vector<Vec3> moved = mesh.vertices;
     for (std::size_t v = 0; v < rim.size(); ++v)
@@ -154,17 +169,12 @@ void smooth_boundary(TriangleMesh& mesh) {
 }  // namespace
 
 int boundary_loops(const TriangleMesh& mesh) {
-  // Boundary edges: directed edges whose opposite is absent. Loops: their
-  // components through shared vertices.
-  std::map<std::pair<int, int>, int> directed;
-  for (const auto& f : mesh.faces)
-    for (int i = 0; i < 3; ++i) ++directed[{f[i], f[(i + 1) % 3]}];
+  // Loops: the components of the boundary edges through shared vertices.
   std::vector<int> parent = singletons(mesh.vertices.size());
   std::vector<char> on_boundary(mesh.vertices.size(), 0);
-  for (const auto& [edge, count] : directed) {
-    if (directed.count({edge.second, edge.first})) continue;
-    on_boundary[edge.first] = on_boundary[edge.second] = 1;
-    parent[find_root(parent, edge.first)] = find_root(parent, edge.second);
+  for (const auto& [a, b] : boundary_edges(mesh)) {
+    on_boundary[a] = on_boundary[b] = 1;
+    parent[find_root(parent, a)] = find_root(parent, b);
   }
   int loops = 0;
   for (std::size_t v = 0; v < parent.size(); ++v)
@@ -201,11 +211,18 @@ TrimReport trim_to_samples(TriangleMesh& mesh, const std::vector<Vec3>& samples,
     return (x - samples[j]).norm() / spacing.local[j];
   };
   std::vector<double> g(n);
-  tbb::parallel_for(std::size_t(0), n, [&](std::size_t v) {
-    g[v] = distance(mesh.vertices[v]);
+  tbb::parallel_for(std::size_t(0), n, [&](std::size_t v) { g[v] = distance(mesh.vertices[v]); });
+  std::vector<std::pair<int, int>> edges;
+  for (std::size_t v = 0; v < n; ++v)
     for (int w : around[v])
-      g[v] = std::max(g[v], distance(0.5 * (mesh.vertices[v] + mesh.vertices[w])));
+      if (static_cast<int>(v) < w) edges.emplace_back(static_cast<int>(v), w);
+  std::vector<double> at_midpoint(edges.size());
+  tbb::parallel_for(std::size_t(0), edges.size(), [&](std::size_t e) {
+    at_midpoint[e] =
+        distance(0.5 * (mesh.vertices[edges[e].first] + mesh.vertices[edges[e].second]));
   });
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    for (int v : {edges[e].first, edges[e].second}) g[v] = std::max(g[v], at_midpoint[e]);
   for (int round = 0; round < 2; ++round) {
     std::vector<double> smoothed(n);
     for (std::size_t v = 0; v < n; ++v) {
@@ -245,9 +262,12 @@ TrimReport trim_to_samples(TriangleMesh& mesh, const std::vector<Vec3>& samples,
     return (T - g[a]) / (g[b] - g[a]);
   };
   constexpr double kSnap = 0.25;
-  std::vector<std::vector<std::array<int, 2>>> link(n);  // the opposite edge of each face at v
+  // Sign changes around each vertex's link (a neighbour that snaps stops v
+  // from snapping, so the states of the link, out or not, stay those counted here).
+  std::vector<int> changes(n, 0);
   for (const auto& f : mesh.faces)
-    for (int i = 0; i < 3; ++i) link[f[i]].push_back({f[(i + 1) % 3], f[(i + 2) % 3]});
+    for (int i = 0; i < 3; ++i)
+      changes[f[i]] += (state[f[(i + 1) % 3]] == kOut) != (state[f[(i + 2) % 3]] == kOut);
   for (std::size_t v = 0; v < n; ++v) {
     double nearest = 1;
     bool neighbour_on = false;
@@ -258,10 +278,7 @@ TrimReport trim_to_samples(TriangleMesh& mesh, const std::vector<Vec3>& samples,
         nearest = std::min(nearest, state[v] == kIn ? t : 1 - t);
       }
     }
-    if (neighbour_on || nearest >= kSnap) continue;
-    int changes = 0;
-    for (const auto& e : link[v]) changes += (state[e[0]] == kOut) != (state[e[1]] == kOut);
-    if (changes == 2) state[v] = kOn;
+    if (!neighbour_on && nearest < kSnap && changes[v] == 2) state[v] = kOn;
   }
 
   // The cut: each triangle clipped to its kept part (in and on vertices),
