@@ -4,6 +4,7 @@
 #
 #   bench/scale.sh [--points 100000,300000,1000000] [--shapes fandisk_large,refined_elephant]
 #                  [--no-building] [--depths 8,9,10,11] [--out bench/results/scale.md]
+#                  [--pdd-args "--trim 2"]
 #
 # Inputs: CGAL's real scan data/points_3/building.ply (100k points), and
 # multi-view virtual scans (../shared/tools/virtual_scan.py: occlusion holes,
@@ -22,6 +23,7 @@ shapes="fandisk_large,refined_elephant"
 depths="8,9,10,11"
 building=1
 out="bench/results/scale.md"
+pdd_args=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --points) points="$2"; shift 2 ;;
@@ -29,6 +31,7 @@ while [ $# -gt 0 ]; do
     --depths) depths="$2"; shift 2 ;;
     --no-building) building=0; shift ;;
     --out) out="$2"; shift 2 ;;
+    --pdd-args) pdd_args="$2"; shift 2 ;;
     *) echo "scale.sh: unknown option $1" >&2; exit 2 ;;
   esac
 done
@@ -75,9 +78,9 @@ with open(sys.argv[1], 'rb') as f:
         if line.startswith(b'end_header'): break" "$1"; }
 
 {
-  echo "# bench/scale.sh, $(date -u '+%Y-%m-%d %H:%M UTC'), commit $(git rev-parse --short HEAD), $(nproc) cores"
+  echo "# bench/scale.sh ${pdd_args:+(pdd $pdd_args) }$(date -u '+%Y-%m-%d %H:%M UTC'), commit $(git rev-parse --short HEAD), $(nproc) cores"
   echo
-  echo "| input | points | pdd s | peak MB | domain vertices | triangles | s / 100k triangles | solve / optimize / refine / contour s | budget | PoissonRecon depth | PR triangles | PR s | PR MB | pdd / PR time |"
+  echo "| input | points | pdd s | peak MB | domain vertices | triangles | s / 100k triangles | solve / optimize / refine / contour / clean-up (with the trim) s | budget | PoissonRecon depth | PR triangles | PR s | PR MB | pdd / PR time |"
   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 } > "$work/table.md"
 cat "$work/table.md"
@@ -89,14 +92,15 @@ import sys
 with open(sys.argv[1], 'rb') as f:
     for line in f:
         if line.startswith(b'element vertex'): print(int(line.split()[2])); break" "$input")"
+  # shellcheck disable=SC2086  # the extra options split into words
   /usr/bin/time -v build/pdd reconstruct "$input" -o "$work/pdd.ply" --quiet \
-    --stats "$work/$name.json" > "$work/pdd.out" 2> "$work/pdd.time" || {
+    --stats "$work/$name.json" $pdd_args > "$work/pdd.out" 2> "$work/pdd.time" || {
     echo "| $name | $n_points | FAILED: $(grep -v '^\s' "$work/pdd.time" | head -1) |" | tee -a "$work/table.md"
     continue
   }
   t_pdd="$(seconds "$work/pdd.time")"
   m_pdd="$(peak_mb "$work/pdd.time")"
-  stages="$(jq -r '[.iterations[].seconds] | [map(.solve) , map(.optimize), map(.refine), map(.contour)] | map(add | . * 10 | round / 10) | map(tostring) | join(" / ")' "$work/$name.json")"
+  stages="$(jq -r '[.iterations[].seconds] | [map(.solve) , map(.optimize), map(.refine), map(.contour), map(.cleanup)] | map(add | . * 10 | round / 10) | map(tostring) | join(" / ")' "$work/$name.json")"
   vertices="$(jq -r .vertices "$work/$name.json")"
   triangles="$(jq -r .triangles "$work/$name.json")"
   budget="$(jq -r '.memory_budget | if .coarsening > 1 then "coarsened \(.coarsening * 100 | round / 100)x" elif .refinement_stopped then "stopped" else "-" end' "$work/$name.json")"
