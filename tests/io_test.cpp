@@ -532,10 +532,19 @@ TEST_F(IoTest, NonFiniteCoordinatesAreNamed) {
   expect_input_error([&] { read_points(path("b.ply")); }, {path("b.ply"), "point 5", "(inf, "});
 }
 
-TEST_F(IoTest, ZeroLengthNormalsAreNamed) {
+TEST_F(IoTest, ZeroNormalsAreMissingOnesCountedAndKept) {
   write_file("a.xyz", "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 0\n0 0 1 0 0 1\n");
-  expect_input_error([&] { read_points(path("a.xyz")); },
-                     {path("a.xyz"), "line 3 (point 3)", "the normal (0, 0, 0) has zero length"});
+  ValidationReport report;
+  const PointSet p = read_points(path("a.xyz"), &report);
+  EXPECT_EQ(p.normals[2], Vec3::Zero());
+  EXPECT_EQ(report.zero_normals, 1u);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find(path("a.xyz") + ": 1 point has a zero normal (the first: "
+                                    "line 3 (point 3))"),
+            std::string::npos)
+      << report.warnings[0];
+  write_file("a.xyz", "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 nan 0\n0 0 1 0 0 1\n");
+  expect_input_error([&] { read_points(path("a.xyz")); }, {"line 3 (point 3)", "not finite"});
 }
 
 TEST_F(IoTest, TooFewPoints) {

@@ -5,6 +5,7 @@
 #include <pdd/normals.h>
 #include <pdd/pipeline.h>
 #include <pdd/quality.h>
+#include <pdd/report.h>
 
 #include <gtest/gtest.h>
 
@@ -55,6 +56,25 @@ TEST(Normals, MstOrientsEveryNormalOfASphereOneWay) {
   int outward = 0;
   for (std::size_t i = 0; i < normals.size(); ++i) outward += normals[i].dot(sphere.normals[i]) > 0;
   EXPECT_EQ(outward, static_cast<int>(normals.size()));
+}
+
+TEST(Normals, ZeroNormalsAreFilledFromTheirNeighbours) {
+  PointSet sphere = test::sample_sphere(3000);
+  const std::vector<Vec3> truth = sphere.normals;
+  for (std::size_t i = 0; i < sphere.size(); i += 300) sphere.normals[i] = Vec3::Zero();
+  std::vector<Vec3> normals = sphere.normals;
+  EXPECT_EQ(fill_missing_normals(sphere.points, normals, 18, "s"), 10u);
+  for (std::size_t i = 0; i < sphere.size(); ++i)
+    EXPECT_GT(normals[i].dot(truth[i]), std::cos(2 * M_PI / 180)) << i;  // within 2 degrees
+  // A reconstruction keeps the given normals and fills the zero ones, and says so.
+  ReconstructOptions o;
+  o.target_edge_length = 0.12;
+  const Result r = reconstruct(sphere, o);
+  EXPECT_EQ(r.normals.filled, 10u);
+  EXPECT_FALSE(r.normals.oriented);
+  EXPECT_NE(normals_note(r).find("10 zero normals replaced"), std::string::npos);
+  EXPECT_TRUE(surface_topology(r.mesh).closed);
+  EXPECT_EQ(surface_topology(r.mesh).components, 1u);
 }
 
 TEST(Normals, TooFewPointsAreAnInputErrorNamingTheSource) {

@@ -57,6 +57,10 @@ struct ValidationReport {
   // Of the merged duplicates, how many carried a normal different from the
   // kept (first) occurrence's.
   std::size_t merged_with_other_normal = 0;
+  // Points whose normal is (0, 0, 0): no normal, as some scanners write it; kept,
+  // and estimated by the reconstruction (fill_missing_normals, normals.h).
+  std::size_t zero_normals = 0;
+  std::string first_zero_normal;  // "line 12 (point 3)" or "point 3"
   // One line per remark, already phrased for the user ("kitten.ply: merged 3
   // duplicate points ..."); empty when there is nothing to say.
   std::vector<std::string> warnings;
@@ -85,7 +89,8 @@ PointSet read_points(const std::string& path, ValidationReport* report = nullptr
 // Validates a point set and returns it with exact duplicates merged (the first
 // occurrence and its normal are kept; the report says how many were merged).
 // Throws InputError, with a message starting with `source`, when a coordinate
-// is NaN or infinite, a normal has zero length (or is not finite), there are
+// is NaN or infinite, a normal is not finite (a zero normal is taken as a
+// missing one: counted and kept, for the reconstruction to estimate), there are
 // fewer than options.min_points distinct points, or all points coincide, lie
 // in one plane or span an extent out of range (see ValidationOptions); when a
 // few far points (outliers) cause the last two, the message names them.

@@ -43,6 +43,14 @@ std::size_t orient_normals_mst(const std::vector<Vec3>& points, std::vector<Vec3
 std::vector<int> orient_segments(const std::vector<Vec3>& points, std::vector<Vec3>& normals,
                                  int neighbors);
 
+// Replaces the zero normals ((0, 0, 0): none, as some scanners write it) by
+// ones estimated by jet fitting over `neighbors` nearest points, each turned to
+// agree with the given normals among those neighbours. Returns how many it
+// replaced. Throws InputError naming `source` when there are fewer than
+// kMinPointsForNormals points.
+std::size_t fill_missing_normals(const std::vector<Vec3>& points, std::vector<Vec3>& normals,
+                                 int neighbors, const std::string& source);
+
 // Flips `fraction` of the normals, chosen by `seed` (for the tests and
 // bench/unoriented.sh: inputs whose orientation cannot be trusted).
 void flip_random_normals(std::vector<Vec3>& normals, double fraction, std::uint64_t seed);

@@ -184,6 +184,7 @@ struct NormalsReport {
   std::size_t flipped = 0;      // normals whose sign the orientation changed
   std::size_t unreached = 0;    // kMst: normals the tree did not reach (left as they were)
   std::size_t segments = 0;     // kSpectral: segments of consistent normals
+  std::size_t filled = 0;       // zero normals (none given) replaced by estimated ones
   double seconds = 0;
 };
 

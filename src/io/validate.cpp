@@ -202,12 +202,16 @@ PointSet io::validate_points_at(PointSet points, const std::string& source,
     if (!is_finite(normal)) {
       fail(source, where(i) + ": the normal " + vector_text(normal) + " is not finite");
     }
-    if (normal.squaredNorm() == 0) {
-      fail(source, where(i) + ": the normal " + vector_text(normal) + " has zero length");
-    }
+    if (normal.squaredNorm() == 0 && r.zero_normals++ == 0) r.first_zero_normal = where(i);
   }
 
   io::check_attributes(source, points.attributes, points.size(), lines);
+  if (r.zero_normals > 0)
+    r.warnings.push_back(source + ": " + std::to_string(r.zero_normals) + " point" +
+                         (r.zero_normals > 1 ? "s have" : " has") +
+                         " a zero normal (the first: " + r.first_zero_normal +
+                         "); the reconstruction estimates " +
+                         (r.zero_normals > 1 ? "theirs" : "its") + " from the neighbours");
   merge_duplicates(points, lines, r);
   if (r.merged_duplicates > 0) {
     std::string warning = source + ": merged " + std::to_string(r.merged_duplicates) +

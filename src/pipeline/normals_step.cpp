@@ -5,6 +5,7 @@
 #include <pdd/normals.h>
 #include <pdd/sizing.h>
 
+#include <algorithm>
 #include <chrono>
 
 namespace pdd::detail {
@@ -71,12 +72,22 @@ std::size_t orient_by_spectral_vote(PointSet& input, const ReconstructOptions& o
 const PointSet& prepare_normals(const PointSet& points, const ReconstructOptions& options,
                                 PointSet& storage, NormalsReport& report) {
   const bool estimate = !points.has_normals() || options.normals == NormalsMode::kEstimate;
-  if (!estimate && options.normals == NormalsMode::kKeep) return points;
+  const bool zeros = !estimate && std::any_of(points.normals.begin(), points.normals.end(),
+                                              [](const Vec3& n) { return n.squaredNorm() == 0; });
+  if (!estimate && !zeros && options.normals == NormalsMode::kKeep) return points;
   const auto start = std::chrono::steady_clock::now();
   storage.points = points.points;
   storage.normals = estimate
                         ? estimate_normals(points.points, options.normal_neighbors, options.source)
                         : points.normals;
+  if (zeros)
+    report.filled = fill_missing_normals(storage.points, storage.normals,
+                                         options.normal_neighbors, options.source);
+  if (!estimate && options.normals == NormalsMode::kKeep) {
+    report.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return storage;
+  }
   report.estimated = estimate;
   report.oriented = true;
   report.orientation = options.orientation;

@@ -36,6 +36,7 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
       << ", \"flipped\": " << result.normals.flipped
       << ", \"unreached\": " << result.normals.unreached
       << ", \"segments\": " << result.normals.segments
+      << ", \"filled\": " << result.normals.filled
       << ", \"seconds\": " << number(result.normals.seconds) << "},\n"
       << "  \"outliers\": {\"ratio\": " << number(result.outliers.ratio)
       << ", \"neighbors\": " << result.outliers.neighbors
@@ -141,6 +142,9 @@ std::string statistics_table(const Result& result) {
 
 std::string normals_note(const Result& result) {
   const NormalsReport& n = result.normals;
+  if (!n.oriented && n.filled > 0)
+    return std::to_string(n.filled) + " zero normal" + (n.filled == 1 ? "" : "s") +
+           " replaced by estimated ones (jet fitting), turned as their neighbours'";
   if (!n.oriented) return "";
   std::string line = std::string("normals ") + (n.estimated ? "estimated by jet fitting and " : "") +
                      "oriented " +
