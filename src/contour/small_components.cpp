@@ -15,22 +15,16 @@
 
 #include "common/nearest_neighbors.h"
 #include "common/union_find.h"
+#include "contour/components.h"
 
 namespace pdd {
-namespace {
+
+namespace detail {
 
 using detail::find_root;
 
-// The connected components of a mesh (through shared vertices): a root
-// vertex per vertex, and per root its number of faces.
-struct Components {
-  std::vector<int> root_of;  // per vertex
-  std::vector<int> faces;    // per root vertex; 0 for the others
-  int largest = -1;          // the root with the most faces (the first such)
-};
-
 Components components(const TriangleMesh& mesh) {
-  std::vector<int> parent = detail::singletons(mesh.vertices.size());
+  std::vector<int> parent = singletons(mesh.vertices.size());
   for (const auto& f : mesh.faces)
     for (int i = 0; i < 3; ++i) parent[find_root(parent, f[i])] = find_root(parent, f[(i + 1) % 3]);
   Components c;
@@ -43,8 +37,13 @@ Components components(const TriangleMesh& mesh) {
   return c;
 }
 
-// Drops the faces of the components whose root is marked, and the vertices
-// they leave unused; the others keep their order. Counts what went.
+std::vector<Eigen::AlignedBox3d> component_boxes(const TriangleMesh& mesh, const Components& c) {
+  std::vector<Eigen::AlignedBox3d> box(mesh.vertices.size());
+  for (const auto& f : mesh.faces)
+    for (int v : f) box[c.root_of[f[0]]].extend(mesh.vertices[v]);
+  return box;
+}
+
 RemovedComponents remove_marked(TriangleMesh& mesh, const Components& c,
                                 const std::vector<char>& marked) {
   RemovedComponents report;
@@ -54,23 +53,34 @@ RemovedComponents remove_marked(TriangleMesh& mesh, const Components& c,
       report.faces += c.faces[r];
     }
   if (report.components == 0) return report;
-  TriangleMesh kept;
-  std::vector<int> index(mesh.vertices.size(), -1);
+  std::vector<std::array<int, 3>> kept;
   for (const auto& f : mesh.faces)
-    if (!marked[c.root_of[f[0]]])
-      for (int v : f) index[v] = 0;
-  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
-    if (index[v] == 0) {
-      index[v] = static_cast<int>(kept.vertices.size());
-      kept.vertices.push_back(mesh.vertices[v]);
-    }
-  for (const auto& f : mesh.faces)
-    if (!marked[c.root_of[f[0]]]) kept.faces.push_back({index[f[0]], index[f[1]], index[f[2]]});
-  mesh = std::move(kept);
+    if (!marked[c.root_of[f[0]]]) kept.push_back(f);
+  mesh.faces = std::move(kept);
+  drop_unused_vertices(mesh);
   return report;
 }
 
-}  // namespace
+void drop_unused_vertices(TriangleMesh& mesh) {
+  std::vector<int> index(mesh.vertices.size(), -1);
+  for (const auto& f : mesh.faces)
+    for (int v : f) index[v] = 0;
+  std::size_t used = 0;
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    if (index[v] == 0) {
+      index[v] = static_cast<int>(used);
+      mesh.vertices[used++] = mesh.vertices[v];
+    }
+  mesh.vertices.resize(used);
+  for (auto& f : mesh.faces)
+    for (int& v : f) v = index[v];
+}
+
+}  // namespace detail
+
+using detail::Components;
+using detail::components;
+using detail::remove_marked;
 
 RemovedComponents remove_small_components(TriangleMesh& mesh, double min_edges) {
   if (!(min_edges >= 0) || !std::isfinite(min_edges))
@@ -84,9 +94,7 @@ RemovedComponents remove_small_components(TriangleMesh& mesh, double min_edges) 
   const double min_diagonal = min_edges * edge_sum / (3.0 * static_cast<double>(mesh.faces.size()));
 
   const Components c = components(mesh);
-  std::vector<Eigen::AlignedBox3d> box(x.size());
-  for (const auto& f : mesh.faces)
-    for (int v : f) box[c.root_of[f[0]]].extend(x[v]);
+  const std::vector<Eigen::AlignedBox3d> box = detail::component_boxes(mesh, c);
   std::vector<char> small(x.size(), 0);
   for (std::size_t r = 0; r < x.size(); ++r)
     small[r] = c.faces[r] > 0 && static_cast<int>(r) != c.largest &&

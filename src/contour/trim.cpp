@@ -6,6 +6,7 @@
 // jagged rim.
 #include <pdd/contour.h>
 
+#include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 
 #include "common/nearest_neighbors.h"
 #include "common/union_find.h"
+#include "contour/components.h"
 
 namespace pdd {
 
@@ -67,15 +69,6 @@ std::vector<std::vector<int>> vertex_neighbours(const TriangleMesh& mesh) {
     a.erase(std::unique(a.begin(), a.end()), a.end());
   }
   return around;
-}
-
-double bounding_diagonal(const std::vector<Vec3>& x, const std::vector<int>& members) {
-  Vec3 lo = x[members[0]], hi = lo;
-  for (int v : members) {
-    lo = lo.cwiseMin(x[v]);
-    hi = hi.cwiseMax(x[v]);
-  }
-  return (hi - lo).norm();
 }
 
 double area(const TriangleMesh& mesh) {
@@ -153,17 +146,7 @@ void smooth_boundary(TriangleMesh& mesh) {
                    0.25 * (mesh.vertices[rim[v][0]] + mesh.vertices[rim[v][1]]);
     mesh.vertices = std::move(moved);
   }
-  std::vector<int> index(mesh.vertices.size(), -1);
-  std::vector<Vec3> used;
-  for (auto& f : mesh.faces)
-    for (int& v : f) {
-      if (index[v] < 0) {
-        index[v] = static_cast<int>(used.size());
-        used.push_back(mesh.vertices[v]);
-      }
-      v = index[v];
-    }
-  mesh.vertices = std::move(used);
+  detail::drop_unused_vertices(mesh);
 }
 
 }  // namespace
@@ -244,14 +227,17 @@ TrimReport trim_to_samples(TriangleMesh& mesh, const std::vector<Vec3>& samples,
       if (state[v] == kOut)
         for (int w : around[v])
           if (state[w] == kOut) parent[find_root(parent, static_cast<int>(v))] = find_root(parent, w);
-    std::map<int, std::vector<int>> regions;
+    std::vector<Eigen::AlignedBox3d> box(n);
     for (std::size_t v = 0; v < n; ++v)
-      if (state[v] == kOut) regions[find_root(parent, static_cast<int>(v))].push_back(static_cast<int>(v));
-    for (const auto& [root, members] : regions) {
-      if (bounding_diagonal(mesh.vertices, members) >= options.holes * spacing.average) continue;
-      ++report.holes_kept;
-      for (int v : members) state[v] = kIn;
-    }
+      if (state[v] == kOut) box[find_root(parent, static_cast<int>(v))].extend(mesh.vertices[v]);
+    std::vector<char> small(n, 0);
+    for (std::size_t r = 0; r < n; ++r)
+      if (!box[r].isEmpty() && box[r].diagonal().norm() < options.holes * spacing.average) {
+        small[r] = 1;
+        ++report.holes_kept;
+      }
+    for (std::size_t v = 0; v < n; ++v)
+      if (state[v] == kOut && small[find_root(parent, static_cast<int>(v))]) state[v] = kIn;
   }
 
   // Snapping: a vertex whose nearest crossing lies within a quarter of its edge
@@ -339,38 +325,12 @@ TrimReport trim_to_samples(TriangleMesh& mesh, const std::vector<Vec3>& samples,
 
   // Islands: pieces of the cut surface less than `islands` spacings across.
   {
-    std::vector<int> parent = singletons(cut.vertices.size());
-    for (const auto& f : cut.faces)
-      for (int i = 0; i < 2; ++i) parent[find_root(parent, f[i])] = find_root(parent, f[i + 1]);
-    std::map<int, std::vector<int>> pieces;
-    for (const auto& f : cut.faces)
-      for (int v : f) pieces[find_root(parent, v)].push_back(v);
+    const detail::Components c = detail::components(cut);
+    const std::vector<Eigen::AlignedBox3d> box = detail::component_boxes(cut, c);
     std::vector<char> drop(cut.vertices.size(), 0);
-    for (const auto& [root, members] : pieces)
-      if (bounding_diagonal(cut.vertices, members) < options.islands * spacing.average) {
-        drop[root] = 1;
-        ++report.islands.components;
-      }
-    if (report.islands.components > 0) {
-      TriangleMesh kept;
-      std::vector<int> renumber(cut.vertices.size(), -1);
-      for (const auto& f : cut.faces) {
-        if (drop[find_root(parent, f[0])]) {
-          ++report.islands.faces;
-          continue;
-        }
-        std::array<int, 3> g3;
-        for (int i = 0; i < 3; ++i) {
-          if (renumber[f[i]] < 0) {
-            renumber[f[i]] = static_cast<int>(kept.vertices.size());
-            kept.vertices.push_back(cut.vertices[f[i]]);
-          }
-          g3[i] = renumber[f[i]];
-        }
-        kept.faces.push_back(g3);
-      }
-      cut = std::move(kept);
-    }
+    for (std::size_t r = 0; r < drop.size(); ++r)
+      drop[r] = c.faces[r] > 0 && box[r].diagonal().norm() < options.islands * spacing.average;
+    report.islands = detail::remove_marked(cut, c, drop);
   }
   smooth_boundary(cut);
   mesh = std::move(cut);
