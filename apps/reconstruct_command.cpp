@@ -46,9 +46,13 @@ struct ReconstructArgs {
 // line per stage otherwise.
 ProgressCallback progress_printer(bool quiet) {
   const bool terminal = ::isatty(STDERR_FILENO);
-  return [terminal, quiet](const Progress& p) {
+  return [terminal, quiet, last = Progress{}](const Progress& p) mutable {
     if (cancel_requested()) return false;
     if (quiet) return true;
+    // The calls from inside a stage only move the clock on a terminal.
+    const bool same_stage = p.stage == last.stage && p.iteration == last.iteration;
+    last = p;
+    if (same_stage && !terminal) return true;
     char line[160];
     std::snprintf(line, sizeof line, "pdd: %-10s iteration %2d  %9zu vertices  %7.1f s",
                   p.stage.c_str(), p.iteration, p.vertices, p.elapsed_seconds);

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -209,6 +210,13 @@ TEST_F(CliTest, ReconstructWritesTheMeshStatisticsDomainAndIterations) {
   EXPECT_NE(slurp(path("d.vtu")).find("<UnstructuredGrid>"), std::string::npos);
   EXPECT_TRUE(fs::exists(path("steps/iteration_01_isosurface.ply")));
   EXPECT_TRUE(fs::exists(path("steps/iteration_01_domain.vtu")));
+  // Off a terminal, one progress line per stage: the calls from inside a stage print nothing.
+  std::istringstream lines(run.err);
+  std::vector<std::string> stages;
+  for (std::string line; std::getline(lines, line);)
+    if (line.find(" iteration ") != std::string::npos) stages.push_back(line.substr(0, 28));
+  EXPECT_GT(stages.size(), 5u) << run.err;
+  EXPECT_EQ(std::adjacent_find(stages.begin(), stages.end()), stages.end()) << run.err;
 }
 
 TEST_F(CliTest, NoCleanupKeepsTheMarchingTetrahedraSurface) {

@@ -230,6 +230,44 @@ TEST(Pipeline, CancellingStopsCleanly) {
   EXPECT_GT(calls, 1);
 }
 
+// Inside a stage the callback is asked again from the long loops (CG
+// iterations, insertions): a false answer there stops the run in the middle
+// of the stage, before its next report.
+TEST(Pipeline, CancellingInsideASolveStopsBeforeItsEnd) {
+  const PointSet input = test::sample_sphere(1500);
+  ReconstructOptions o = fast_options(SolverKind::kSsd, 0.12);
+  o.progress_interval = 0;  // ask at every check, so that the test does not depend on time
+  std::vector<std::string> stages;
+  int solve_calls = 0;
+  o.progress = [&](const Progress& p) {
+    stages.push_back(p.stage);
+    if (p.stage == "solve" && p.iteration == 2) ++solve_calls;
+    return solve_calls < 3;  // the third call of the second solve: its CG has started
+  };
+  const Result r = reconstruct(input, o);
+  EXPECT_TRUE(r.cancelled);
+  EXPECT_TRUE(r.mesh.faces.empty());
+  EXPECT_EQ(solve_calls, 3);
+  EXPECT_EQ(stages.back(), "solve");
+  EXPECT_EQ(std::count(stages.begin(), stages.end(), "contour"), 1);  // the first solve's only
+}
+
+// The default interval (0.1 s) keeps the calls inside a stage few.
+TEST(Pipeline, CallsInsideAStageAreSpacedByTheInterval) {
+  const PointSet input = test::sample_sphere(1500);
+  ReconstructOptions o = fast_options(SolverKind::kSsd, 0.12);
+  int calls = 0;
+  o.progress = [&](const Progress&) { return ++calls > 0; };
+  o.progress_interval = 1e9;
+  const Result spaced = reconstruct(input, o);
+  const int per_stage = calls;
+  calls = 0;
+  o.progress_interval = 0;
+  const Result every = reconstruct(input, o);
+  EXPECT_EQ(spaced.mesh.faces, every.mesh.faces);  // asking changes nothing else
+  EXPECT_GT(calls, 3 * per_stage);
+}
+
 TEST(Pipeline, SameSeedGivesIdenticalOutput) {
   const PointSet input = test::sample_ellipsoid(1200, Vec3(1.0, 0.7, 0.5));
   ReconstructOptions o = fast_options(SolverKind::kSsd, 0.12);

@@ -127,6 +127,10 @@ struct ReconstructOptions {
   std::uint64_t seed = 0;              // the refiner's random draws (rule 5 of §3.4)
   int threads = 0;                     // 0 = all cores
   ProgressCallback progress;           // optional
+  // Inside a stage the callback is called again (same stage) at most every
+  // this many seconds, from the long loops, so that returning false stops
+  // the run within a fraction of a second; 0: at every loop's check.
+  double progress_interval = 0.1;
   IterationCallback on_iteration;      // optional
 };
 

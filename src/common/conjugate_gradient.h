@@ -4,6 +4,7 @@
 // Eigen's ConjugateGradient sums in an order that follows the thread count.
 #pragma once
 
+#include "common/cancellation.h"
 #include "common/parallel_kernels.h"
 
 #include <Eigen/Core>
@@ -21,7 +22,8 @@ struct PcgResult {
 // CG from x with r = b - A x given (constraints already applied to it):
 // apply(p, q) sets q = A p, precondition(r, z) sets z = M^-1 r, both
 // symmetric positive definite on the unknowns. Stops once |r| <= tolerance x
-// reference, after max_iterations, or when A p . p is not positive.
+// reference, after max_iterations, or when A p . p is not positive. Each
+// iteration polls the run's cancellation (common/cancellation.h).
 template <class Apply, class Precondition>
 PcgResult preconditioned_cg(Apply apply, Precondition precondition, Eigen::VectorXd& r,
                             Eigen::VectorXd& x, double tolerance, double reference,
@@ -38,6 +40,7 @@ PcgResult preconditioned_cg(Apply apply, Precondition precondition, Eigen::Vecto
   p = z;
   double rz = deterministic_dot(r, z);
   for (int it = 1; it <= max_iterations; ++it) {
+    poll();
     apply(p, q);
     const double pq = deterministic_dot(p, q);
     if (!(pq > 0)) break;  // A or M not positive definite numerically

@@ -2,6 +2,7 @@
 // indices, a per-vertex function f and per-vertex flags.
 #include <pdd/domain.h>
 
+#include "common/cancellation.h"
 #include "domain/domain_impl.h"
 
 #include <CGAL/Spatial_sort_traits_adapter_3.h>
@@ -119,7 +120,9 @@ std::vector<int> Domain::insert(const std::vector<Vec3>& points, std::uint8_t fl
   }
   std::vector<int> label(points.size(), -1);
   Delaunay::Vertex_handle last;
+  std::size_t inserted = 0;
   for (const auto& [point, i] : order) {
+    if (++inserted % 1024 == 0) detail::poll();  // the run's cancellation
     Delaunay::Locate_type lt;
     int li, lj;
     const auto c = d.dt.locate(point, lt, li, lj,
@@ -164,11 +167,25 @@ Domain Domain::moved(const std::vector<Vec3>& new_positions, std::vector<double>
   Domain out;
   Impl& o = *out.impl_;
   o.f = std::move(f);
-  std::vector<std::pair<detail::Point, int>> items;
-  items.reserve(n);
-  for (std::size_t i = 0; i < n; ++i)
-    items.emplace_back(to_point(new_positions[i]), static_cast<int>(i));
-  o.dt.insert(items.begin(), items.end());
+  // CGAL's range insertion with info written out (the same spatial order,
+  // each point located from the last), so that the run's cancellation is
+  // polled in between.
+  std::vector<detail::Point> points;
+  points.reserve(n);
+  for (const Vec3& p : new_positions) points.push_back(to_point(p));
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  CGAL::spatial_sort<CGAL::Sequential_tag>(
+      order.begin(), order.end(),
+      CGAL::Spatial_sort_traits_adapter_3<detail::Kernel,
+                                          CGAL::Pointer_property_map<detail::Point>::type>(
+          CGAL::make_property_map(points)));
+  Delaunay::Vertex_handle hint;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k % 4096 == 4095) detail::poll();
+    hint = o.dt.insert(points[order[k]], hint);
+    hint->info() = static_cast<int>(order[k]);
+  }
   if (o.dt.number_of_vertices() != n)
     throw std::invalid_argument("Domain::move_vertices: two vertices would coincide");
   o.flags = d.flags;

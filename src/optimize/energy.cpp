@@ -1,6 +1,7 @@
 // E(T), Eq. (1), frozen for one round: a quadratic in the 3|V| coordinates.
 #include <pdd/optimize.h>
 
+#include "common/cancellation.h"
 #include "optimize/energy_terms.h"
 
 #include <cmath>
@@ -44,8 +45,10 @@ DomainEnergy domain_energy(const Domain& domain, const OptimizerOptions& options
   if (r > 0) {
     if (options.asap && options.lambda_asap > 0)
       add_asap_term(domain, options.lambda_asap / std::pow(r, 5), q);
+    detail::poll();  // the run's cancellation, between the terms
     if (options.mid_edge && options.lambda_mid_edge > 0)
       add_mid_edge_term(domain, options.lambda_mid_edge / std::pow(r, 4), q);
+    detail::poll();
     if (options.damping && options.damping_weight > 0)
       add_damping_term(domain, energy.fixed, options.damping_weight / (r * r), q);
   }

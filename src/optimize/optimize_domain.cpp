@@ -4,6 +4,7 @@
 #include <pdd/errors.h>
 #include <pdd/optimize.h>
 
+#include "common/cancellation.h"
 #include "common/nearest_neighbors.h"
 #include "common/conjugate_gradient.h"
 #include "common/parallel_kernels.h"
@@ -178,6 +179,7 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
   OptimizerReport report;
   if (domain.num_tets() == 0) return report;
   const DomainEnergy energy = domain_energy(domain, options);
+  detail::poll();  // the run's cancellation, between the steps of a round
   report.diameter = energy.diameter;
   report.crossing_tets = energy.crossing_tets;
   for (bool f : energy.fixed) report.fixed_vertices += f;
@@ -218,6 +220,7 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
       moving[v] = !step.segment<3>(3 * v).isZero(0);
     }
     std::vector<Location> located;
+    detail::poll();
     if (send_back(stray_vertices(domain, positions, moving, shortest, options.min_distance_ratio,
                                  located)))
       continue;
@@ -234,6 +237,7 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
     }
     if (std::find(moving.begin(), moving.end(), 1) == moving.end()) break;
     Domain moved = domain.moved(positions, carried_values(domain, moving, located));
+    detail::poll();
     if (send_back(collapsed_vertices(moved, moving))) continue;
     for (Eigen::Index v = 0; v < n; ++v)
       report.max_displacement =

@@ -6,6 +6,7 @@
 #include <pdd/quality.h>
 #include <pdd/refine.h>
 
+#include "common/cancellation.h"
 #include "common/enum_names.h"
 #include "pipeline/memory_budget.h"
 #include "pipeline/normals_step.h"
@@ -19,6 +20,7 @@
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <random>
 #include <thread>
@@ -47,9 +49,6 @@ class EigenThreads {
  private:
   int saved_;
 };
-
-// Thrown by Run::report when the callback asks to stop; caught in reconstruct().
-struct Cancelled {};
 
 // The centre of the points' bounding box (0.5 lo + 0.5 hi cannot overflow).
 Vec3 bounding_box_centre(const std::vector<Vec3>& points) {
@@ -122,15 +121,19 @@ std::shared_ptr<const SizingField> make_sizing(const PointSet& points,
 
 class Run {
  public:
-  Run(const PointSet& points, const ReconstructOptions& options)
+  // `current` is where the run is, for the progress callback's calls inside a
+  // stage; times are counted from `start`.
+  Run(const PointSet& points, const ReconstructOptions& options, Progress& current,
+      Clock::time_point start)
       : points_(points),
+        current_(current),
         options_(options),
         solver_(make_solver(options.solver)),
         budget_(options.max_memory, points.size(),
                 options.sizing == SizingKind::kUniform && !options.custom_sizing &&
                     options.target_area <= 0 && options.target_edge_length <= 0),
         rng_(options.seed),
-        start_(Clock::now()) {}
+        start_(start) {}
 
   // Figure 3, with optimizer passes on both sides of the refiner: after a
   // solve, with its solution (the isosurface the refiner then samples is
@@ -229,13 +232,12 @@ class Run {
 
   // Calls the progress callback; a false answer cancels the run.
   void report(const char* stage, int iteration, const Domain& domain) {
+    current_.stage = stage;
+    current_.iteration = iteration;
+    current_.vertices = domain.num_vertices();
     if (!options_.progress) return;
-    Progress p;
-    p.stage = stage;
-    p.iteration = iteration;
-    p.vertices = domain.num_vertices();
-    p.elapsed_seconds = seconds_since(start_);
-    if (!options_.progress(p)) throw Cancelled{};
+    current_.elapsed_seconds = seconds_since(start_);
+    if (!options_.progress(current_)) throw detail::Cancelled{};
   }
 
   // Solves on the domain (warm-started from the current f) and measures the
@@ -279,7 +281,9 @@ class Run {
     stats.small_components = remove_small_components(result_.mesh, options_.min_component_edges);
     stats.unsupported_components =
         remove_unsupported_components(result_.mesh, points_.points, options_.min_component_samples);
+    detail::poll();
     result_.trim = trim_to_samples(result_.mesh, points_.points, options_.trim);
+    detail::poll();
     if (options_.cleanup)
       stats.cleanup = cleanup_isosurface(result_.mesh, options_.cleanup_options);
     stats.seconds_cleanup = seconds_since(t);
@@ -330,6 +334,7 @@ class Run {
   }
 
   const PointSet& points_;
+  Progress& current_;
   const ReconstructOptions& options_;
   std::unique_ptr<ImplicitSolver> solver_;  // every solve, so that its multigrid keeps the levels
   detail::VertexBudget budget_;
@@ -380,6 +385,11 @@ int max_threads() {
   return 4 * static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
+namespace {
+Result run_stages(const PointSet& points, const ReconstructOptions& options, Progress& current,
+                  Clock::time_point start);
+}  // namespace
+
 Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
   if (options.max_iterations < 1)
     throw InputError("reconstruct: at least one iteration is needed, got " +
@@ -400,6 +410,33 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
                     static_cast<std::size_t>(options.threads));
   const EigenThreads eigen_threads(options.threads);
   const auto start = Clock::now();
+  // Where the run is: set by each stage's report, and sent again from inside
+  // the long loops (detail::poll) so that a cancellation is heard within a stage.
+  Progress current;
+  current.stage = "initialize";
+  std::function<bool()> ask;
+  if (options.progress)
+    ask = [&] {
+      current.elapsed_seconds = seconds_since(start);
+      return options.progress(current);
+    };
+  const detail::PollScope poll_scope(std::move(ask), options.progress_interval);
+  try {
+    return run_stages(points, options, current, start);
+  } catch (const detail::Cancelled&) {
+  } catch (const detail::OrientationCancelled&) {
+  }
+  Result cancelled;
+  cancelled.cancelled = true;
+  return cancelled;
+}
+
+namespace {
+
+// reconstruct() once its options are checked: outliers, normals, then the
+// domain strategy's stages.
+Result run_stages(const PointSet& points, const ReconstructOptions& options, Progress& current,
+                  Clock::time_point start) {
   // Stray points first: they would become blobs, and skew the normals' estimation.
   OutlierReport outliers;
   const std::vector<char> stray = find_outliers(points.points, options.outliers, &outliers);
@@ -420,15 +457,7 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
   // Normals estimated or oriented first when they are missing or untrusted.
   PointSet with_new_normals;
   NormalsReport normals;
-  const PointSet* prepared = nullptr;
-  try {
-    prepared = &detail::prepare_normals(kept, options, with_new_normals, normals);
-  } catch (const detail::OrientationCancelled&) {
-    Result cancelled;
-    cancelled.cancelled = true;
-    return cancelled;
-  }
-  const PointSet& input = *prepared;
+  const PointSet& input = detail::prepare_normals(kept, options, with_new_normals, normals);
   if (input.normals.size() != input.points.size())
     throw InputError("reconstruct: " + std::to_string(input.normals.size()) + " normals for " +
                      std::to_string(input.points.size()) + " points");
@@ -453,34 +482,28 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
   SsdOptions& ssd = resolved.solver.ssd;
   if (resolved.solver.kind == SolverKind::kSsd && ssd.alpha == 0 && ssd.noise < 0)
     ssd.noise = estimate_noise(relative);
-  const double seconds_before = seconds_since(start);
-  Run run(relative, resolved);
-  try {
-    Result result = [&] {
-      switch (resolved.strategy) {
-        case DomainStrategy::kProgressive: return run.progressive();
-        case DomainStrategy::kDirect: return run.direct();
-        case DomainStrategy::kInput: return run.input();
-        case DomainStrategy::kOctree: return run.octree();
-      }
-      throw InputError("reconstruct: unknown domain strategy");
-    }();
-    if (!samples.attributes.empty()) {
-      samples.points = std::move(relative.points);
-      result.mesh.attributes = interpolate_attributes(samples, result.mesh.vertices);
+  Run run(relative, resolved, current, start);
+  Result result = [&] {
+    switch (resolved.strategy) {
+      case DomainStrategy::kProgressive: return run.progressive();
+      case DomainStrategy::kDirect: return run.direct();
+      case DomainStrategy::kInput: return run.input();
+      case DomainStrategy::kOctree: return run.octree();
     }
-    for (Vec3& v : result.mesh.vertices) v += centre;
-    result.domain.translate(centre);
-    result.outliers = outliers;
-    result.noise = std::max(0.0, ssd.noise);
-    result.seconds += seconds_before;
-    result.normals = normals;
-    return result;
-  } catch (const Cancelled&) {
+    throw InputError("reconstruct: unknown domain strategy");
+  }();
+  if (!samples.attributes.empty()) {
+    samples.points = std::move(relative.points);
+    result.mesh.attributes = interpolate_attributes(samples, result.mesh.vertices);
   }
-  Result cancelled;
-  cancelled.cancelled = true;
-  return cancelled;
+  for (Vec3& v : result.mesh.vertices) v += centre;
+  result.domain.translate(centre);
+  result.outliers = outliers;
+  result.noise = std::max(0.0, ssd.noise);
+  result.normals = normals;
+  return result;
 }
+
+}  // namespace
 
 }  // namespace pdd

@@ -2,6 +2,8 @@
 // trisection / bisection schemes of Figure 6.
 #include <pdd/refine.h>
 
+#include "common/cancellation.h"
+
 #include <algorithm>
 #include <set>
 #include <tuple>
@@ -140,6 +142,7 @@ RefinementStats refine(Domain& domain, const SizingField& sizing, std::mt19937_6
         ++stats.left;
     }
   }
+  detail::poll();  // the run's cancellation
   stats.inserted_points = static_cast<int>(domain.insert(points.points()).size());
 
   const std::vector<Isofacet> after = isofacets(domain.mesh(), domain.f());

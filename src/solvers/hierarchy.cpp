@@ -1,5 +1,6 @@
 #include "solvers/hierarchy.h"
 
+#include "common/cancellation.h"
 #include "domain/triangulation.h"
 
 #include <CGAL/Spatial_sort_traits_adapter_3.h>
@@ -187,7 +188,10 @@ const std::vector<SparseMatrix>& ProgressiveHierarchy::levels_for(
           kept = true;
           break;
         }
-    if (!kept) prolongations[k] = subset_prolongation(vertices, chain[k + 1], chain[k]);
+    if (!kept) {
+      prolongations[k] = subset_prolongation(vertices, chain[k + 1], chain[k]);
+      poll();
+    }
   }
   chain_ = std::move(chain);
   prolongations_ = std::move(prolongations);

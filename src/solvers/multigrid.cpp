@@ -156,6 +156,7 @@ void Multigrid::setup(const SparseMatrix& A, const std::vector<SparseMatrix>& pr
     coarse.P = &P;
     coarse.R = compressed_transpose(*coarse.P);
     coarse.galerkin = galerkin_product(*coarse.P, *fine.A);
+    poll();
     d.levels.push_back(std::move(coarse));
     d.levels.back().A = &d.levels.back().galerkin;
   }
@@ -167,6 +168,7 @@ void Multigrid::setup(const SparseMatrix& A, const std::vector<SparseMatrix>& pr
     l.inverse_diagonal = diagonal.cwiseInverse();
     // Lanczos' estimate lies below the true value: a margin of 10 %.
     l.largest = 1.1 * largest_eigenvalue(*l.A, diagonal.cwiseSqrt().cwiseInverse(), 12);
+    poll();
   }
   d.coarsest = std::make_unique<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>>();
   d.coarsest->cholmod().print = 0;

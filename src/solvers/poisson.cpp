@@ -4,6 +4,7 @@
 #include "solvers/normal_field.h"
 #include "solvers/problem.h"
 
+#include "common/cancellation.h"
 #include "common/parallel_kernels.h"
 
 #include <pdd/errors.h>
@@ -42,6 +43,7 @@ class PoissonSolver final : public ImplicitSolver {
 
     // Eq. (14) in units of l: [L + alpha l / |X| Phi^T Phi] F = Div N~.
     const SparseMatrix L = cotangent_laplacian(p.mesh);
+    poll();
     SparseMatrix A = L;
     if (options_.alpha > 0) {
       const double w = options_.alpha * p.length / static_cast<double>(p.num_points);

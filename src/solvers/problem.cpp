@@ -1,5 +1,6 @@
 #include "solvers/problem.h"
 
+#include "common/cancellation.h"
 #include <pdd/errors.h>
 #include <pdd/io.h>
 
@@ -23,7 +24,9 @@ Problem make_problem(const Domain& domain, const PointSet& points, const std::st
   } catch (const InputError& e) {
     throw InputError(solver + ": " + e.what());
   }
+  poll();
   p.Phi = sampling_matrix(p.mesh, p.locations);
+  poll();
   Eigen::AlignedBox3d box;
   for (const Vec3& x : points.points) box.extend(x);
   p.length = box.sizes().maxCoeff();

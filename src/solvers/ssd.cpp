@@ -3,6 +3,7 @@
 #include "solvers/linear_solver.h"
 #include "solvers/problem.h"
 
+#include "common/cancellation.h"
 #include "common/parallel_kernels.h"
 
 #include <pdd/errors.h>
@@ -49,10 +50,13 @@ LinearSystem ssd_system(const Problem& p, const SsdOptions& options) {
   // one-ring terms are added into the two-ring Hessian term.
   SparseMatrix A;
   const SparseMatrix stiffness = weighted_stiffness(p.mesh, count);
+  poll();
   const SparseMatrix values = gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
+  poll();
   const double alpha = options.alpha / (p.length * p.length * nx);
   if (options.gamma > 0) {
     A = hessian_energy(p.mesh);
+    poll();
     A *= options.gamma * p.length * p.length / tet_volumes(p.mesh).sum();  // H^T M~_V^-1 H
     add_to(A, stiffness, beta);
   } else {
