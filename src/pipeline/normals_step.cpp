@@ -40,7 +40,7 @@ std::size_t orient_by_spectral_vote(PointSet& input, const ReconstructOptions& o
   coarse.min_component_edges = 0;
   coarse.on_iteration = nullptr;
   if (options.progress)
-    coarse.progress = [progress = options.progress](const Progress& p) {
+    coarse.progress = [&progress = options.progress](const Progress& p) {
       Progress orient = p;
       orient.stage = "orient";
       return progress(orient);

@@ -121,12 +121,13 @@ std::shared_ptr<const SizingField> make_sizing(const PointSet& points,
 
 class Run {
  public:
-  // `current` is where the run is, for the progress callback's calls inside a
-  // stage; times are counted from `start`.
+  // `current` is where the run is, sent by `ask` (the progress callback, also
+  // called from inside the stages); times are counted from `start`.
   Run(const PointSet& points, const ReconstructOptions& options, Progress& current,
-      Clock::time_point start)
+      const std::function<bool()>& ask, Clock::time_point start)
       : points_(points),
         current_(current),
+        ask_(ask),
         options_(options),
         solver_(make_solver(options.solver)),
         budget_(options.max_memory, points.size(),
@@ -235,9 +236,7 @@ class Run {
     current_.stage = stage;
     current_.iteration = iteration;
     current_.vertices = domain.num_vertices();
-    if (!options_.progress) return;
-    current_.elapsed_seconds = seconds_since(start_);
-    if (!options_.progress(current_)) throw detail::Cancelled{};
+    if (ask_ && !ask_()) throw detail::Cancelled{};
   }
 
   // Solves on the domain (warm-started from the current f) and measures the
@@ -335,6 +334,7 @@ class Run {
 
   const PointSet& points_;
   Progress& current_;
+  const std::function<bool()>& ask_;
   const ReconstructOptions& options_;
   std::unique_ptr<ImplicitSolver> solver_;  // every solve, so that its multigrid keeps the levels
   detail::VertexBudget budget_;
@@ -387,7 +387,7 @@ int max_threads() {
 
 namespace {
 Result run_stages(const PointSet& points, const ReconstructOptions& options, Progress& current,
-                  Clock::time_point start);
+                  const std::function<bool()>& ask, Clock::time_point start);
 }  // namespace
 
 Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
@@ -420,9 +420,10 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
       current.elapsed_seconds = seconds_since(start);
       return options.progress(current);
     };
-  const detail::PollScope poll_scope(std::move(ask), options.progress_interval);
+  // One callable for every call, as the user's callback may keep state.
+  const detail::PollScope poll_scope(ask, options.progress_interval);
   try {
-    return run_stages(points, options, current, start);
+    return run_stages(points, options, current, ask, start);
   } catch (const detail::Cancelled&) {
   } catch (const detail::OrientationCancelled&) {
   }
@@ -436,7 +437,7 @@ namespace {
 // reconstruct() once its options are checked: outliers, normals, then the
 // domain strategy's stages.
 Result run_stages(const PointSet& points, const ReconstructOptions& options, Progress& current,
-                  Clock::time_point start) {
+                  const std::function<bool()>& ask, Clock::time_point start) {
   // Stray points first: they would become blobs, and skew the normals' estimation.
   OutlierReport outliers;
   const std::vector<char> stray = find_outliers(points.points, options.outliers, &outliers);
@@ -482,7 +483,7 @@ Result run_stages(const PointSet& points, const ReconstructOptions& options, Pro
   SsdOptions& ssd = resolved.solver.ssd;
   if (resolved.solver.kind == SolverKind::kSsd && ssd.alpha == 0 && ssd.noise < 0)
     ssd.noise = estimate_noise(relative);
-  Run run(relative, resolved, current, start);
+  Run run(relative, resolved, current, ask, start);
   Result result = [&] {
     switch (resolved.strategy) {
       case DomainStrategy::kProgressive: return run.progressive();
