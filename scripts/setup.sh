@@ -3,6 +3,7 @@
 # Idempotent; needs root (or sudo) for apt-get.
 #   scripts/setup.sh          what the build, the tests and the example need
 #   scripts/setup.sh --bench  also what bench/solvers.sh and bench/scale.sh use
+#   scripts/setup.sh --fuzz   also clang and libFuzzer, for scripts/fuzz.sh
 set -euo pipefail
 
 packages=(
@@ -19,6 +20,9 @@ if [ "${1:-}" = "--bench" ]; then
   packages+=(
     libhypre-dev mpi-default-dev  # bench/solvers.sh: BoomerAMG beside pdd's multigrid
   )
+fi
+if [ "${1:-}" = "--fuzz" ]; then
+  packages+=(clang libclang-rt-dev)  # scripts/fuzz.sh: libFuzzer and the sanitizers' runtime
 fi
 
 missing=()

@@ -405,6 +405,24 @@ TEST_F(IoTest, PlyLinesThatDoNotParseAreNamed) {
                      {"line 9", "'vertex' record 2 has too few values"});
   write_file("a.ply", head + "0 0 0\n1 0 0 7\n0 1 0\n0 0 1\n");
   expect_input_error([&] { read_points(path("a.ply")); }, {"line 9", "1 more values"});
+  // A text value its property's type cannot hold (found by fuzz/ply_fuzzer.cpp: the
+  // 256 was written back into a uchar).
+  const std::string typed =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
+      "property float y\nproperty float z\nproperty uchar label\n"
+      "property short s\nproperty float f\nend_header\n";
+  for (const auto& [values, message] : std::vector<std::pair<std::string, std::string>>{
+           {"256 0 0", "'label' is a uchar, which cannot hold '256'"},
+           {"-1 0 0", "'label' is a uchar, which cannot hold '-1'"},
+           {"2.5 0 0", "'label' is a uchar, which cannot hold '2.5'"},
+           {"1 40000 0", "'s' is a short, which cannot hold '40000'"},
+           {"1 0 1e39", "'f' is a float, which cannot hold '1e39'"}}) {
+    write_file("a.ply", typed + "0 0 0 1 0 0\n1 0 0 " + values + "\n0 1 0 1 0 0\n0 0 1 1 0 0\n");
+    expect_input_error([&] { read_points(path("a.ply")); }, {path("a.ply"), "line 12", message});
+  }
+  // A text float is read as the float it declares, so that it is written back the same.
+  write_file("a.ply", typed + "0 0 0 1 0 0.1\n1 0 0 1 0 0\n0 1 0 1 0 0\n0 0 1 1 0 0\n");
+  EXPECT_EQ(read_points(path("a.ply")).attributes[2].values[0], static_cast<double>(0.1f));
 }
 
 TEST_F(IoTest, TextLinesThatDoNotParseAreNamed) {
@@ -984,6 +1002,10 @@ TEST_F(IoTest, BadColoursAreNamed) {
   p.attributes.resize(1);
   p.attributes[0].values.resize(9);
   expect_input_error([&] { validate_points(p, "mine"); }, {"'red' has 9 values for 10 points"});
+  // Any property's values must be ones its type holds.
+  p.attributes = {{"label", "uchar", std::vector<double>(10, 2.5)}};
+  expect_input_error([&] { validate_points(p, "mine"); },
+                     {"mine: point 1", "'label' is a uchar, which cannot hold 2.5"});
 }
 
 TEST_F(IoTest, MergedDuplicatesTakeTheirAttributesWithThem) {

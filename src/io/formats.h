@@ -45,6 +45,12 @@ RawMesh read_off(const std::string& path, const std::string& data, Content conte
 RawMesh read_obj(const std::string& path, const std::string& data, Content content);
 RawVertices read_xyz(const std::string& path, const std::string& data);
 
+// read_points and read_mesh on a file's content, `path` naming it (and its
+// format, by its extension): what the fuzz targets (fuzz/) feed.
+PointSet parse_points(const std::string& path, const std::string& data,
+                      ValidationReport* report, const ValidationOptions& options);
+TriangleMesh parse_mesh(const std::string& path, const std::string& data);
+
 // validate_points with the line of each point (empty: number points instead).
 PointSet validate_points_at(PointSet points, const std::string& source,
                             const std::vector<std::size_t>& lines, ValidationReport* report,
@@ -72,6 +78,10 @@ void write_off(std::ostream& out, const std::vector<Vec3>& vertices,
 void write_obj(std::ostream& out, const std::vector<Vec3>& vertices,
                const std::vector<Vec3>& normals, const std::vector<Attribute>& attributes,
                const Faces& faces);
+
+// Whether a property of the PLY type `type` (a known one) holds `value`: a
+// whole number in range for the integer types, within float's range for float.
+bool type_holds(const std::string& type, double value);
 
 // The colour channels among `attributes` (red, green, blue, then alpha when
 // there), or none when there are no colours.

@@ -24,8 +24,12 @@ void io::check_face(const std::array<int, 3>& face, std::size_t index, std::size
 }
 
 TriangleMesh read_mesh(const std::string& path) {
+  io::format_of(path, kMeshFormats, "mesh");  // before the file is opened
+  return io::parse_mesh(path, io::load_file(path));
+}
+
+TriangleMesh io::parse_mesh(const std::string& path, const std::string& data) {
   const io::Format format = io::format_of(path, kMeshFormats, "mesh");
-  const std::string data = io::load_file(path);
   io::RawMesh raw;
   switch (format) {
     case io::Format::kPly:

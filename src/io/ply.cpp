@@ -7,6 +7,7 @@
 // per line, as writers lay them out, so that an error can name its line.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstring>
 #include <optional>
 #include <type_traits>
@@ -61,10 +62,42 @@ const char* type_name(Scalar type) {
   return "float";
 }
 
+// The range of an integer type.
+std::pair<double, double> integer_range(Scalar type) {
+  switch (type) {
+    case Scalar::kInt8:
+      return {-128.0, 127.0};
+    case Scalar::kUint8:
+      return {0.0, 255.0};
+    case Scalar::kInt16:
+      return {-32768.0, 32767.0};
+    case Scalar::kUint16:
+      return {0.0, 65535.0};
+    case Scalar::kInt32:
+      return {-2147483648.0, 2147483647.0};
+    case Scalar::kUint32:
+      return {0.0, 4294967295.0};
+    case Scalar::kFloat32:
+    case Scalar::kFloat64:
+      break;
+  }
+  return {-HUGE_VAL, HUGE_VAL};
+}
+
 Scalar type_named(const std::string& name) {
   for (const ScalarName& s : kScalars)
     if (name == s.name) return s.type;
   return Scalar::kFloat32;
+}
+
+// Whether `value` is one a property of `type` holds: a whole number in range
+// for the integers, within float's range (or not finite) for a float.
+bool holds(Scalar type, double value) {
+  if (type == Scalar::kFloat64) return true;
+  if (type == Scalar::kFloat32)
+    return !std::isfinite(value) || std::abs(value) <= std::numeric_limits<float>::max();
+  const auto [lo, hi] = integer_range(type);
+  return value == std::floor(value) && value >= lo && value <= hi;
 }
 
 struct Property {
@@ -97,6 +130,7 @@ struct VertexLayout {
   std::array<std::size_t, 3> position{};
   std::optional<std::array<std::size_t, 3>> normal;
   std::vector<std::size_t> attributes;  // every other scalar property
+  std::vector<char> float_attributes;   // whether each of those is a float (not a double)
 };
 
 struct FaceLayout {
@@ -272,7 +306,10 @@ VertexLayout vertex_layout(const std::string& path, const Header& header) {
                           layout.position.end() ||
                       (layout.normal && std::find(layout.normal->begin(), layout.normal->end(),
                                                   i) != layout.normal->end());
-    if (!read && !property.is_list) layout.attributes.push_back(i);
+    if (!read && !property.is_list) {
+      layout.attributes.push_back(i);
+      layout.float_attributes.push_back(property.type == Scalar::kFloat32);
+    }
   }
   return layout;
 }
@@ -320,8 +357,13 @@ void add_vertex(const VertexLayout& layout, const std::vector<double>& values, R
     const auto& n = *layout.normal;
     mesh.vertices.normals.emplace_back(values[n[0]], values[n[1]], values[n[2]]);
   }
-  for (std::size_t a = 0; a < layout.attributes.size(); ++a)
-    mesh.vertices.attributes[a].values.push_back(values[layout.attributes[a]]);
+  // An attribute keeps its type's precision (a text float is rounded to a
+  // float), so that it is written back as it was read.
+  for (std::size_t a = 0; a < layout.attributes.size(); ++a) {
+    const double value = values[layout.attributes[a]];
+    mesh.vertices.attributes[a].values.push_back(
+        layout.float_attributes[a] ? static_cast<double>(static_cast<float>(value)) : value);
+  }
 }
 
 void read_ascii_body(const std::string& path, const std::string& data, const Header& header,
@@ -351,7 +393,13 @@ void read_ascii_body(const std::string& path, const std::string& data, const Hea
           fail_at_line(path, line, record + " has too few values for its properties");
         }
         if (!property.is_list) {
-          values[p] = double_at(tokens[t++], path, line);
+          const std::string_view token = tokens[t++];
+          values[p] = double_at(token, path, line);
+          // A text value must be one its property's type can hold, as a binary one is.
+          if (!holds(property.type, values[p]))
+            fail_at_line(path, line,
+                         record + ": property " + quote(property.name) + " is a " +
+                             type_name(property.type) + ", which cannot hold " + quote(token));
           continue;
         }
         const std::int64_t count = integer_at(tokens[t++], path, line);
@@ -649,5 +697,7 @@ double unit_colour(const Attribute& channel, double value) {
   if (channel.type == "ushort") return value / 65535;
   return value;
 }
+
+bool type_holds(const std::string& type, double value) { return holds(type_named(type), value); }
 
 }  // namespace pdd::io

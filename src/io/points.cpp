@@ -13,8 +13,13 @@ const std::vector<io::Format> kPointFormats = {io::Format::kPly, io::Format::kXy
 
 PointSet read_points(const std::string& path, ValidationReport* report,
                      const ValidationOptions& options) {
+  io::format_of(path, kPointFormats, "point set");  // before the file is opened
+  return io::parse_points(path, io::load_file(path), report, options);
+}
+
+PointSet io::parse_points(const std::string& path, const std::string& data,
+                          ValidationReport* report, const ValidationOptions& options) {
   const io::Format format = io::format_of(path, kPointFormats, "point set");
-  const std::string data = io::load_file(path);
   io::RawVertices raw;
   switch (format) {
     case io::Format::kPly:

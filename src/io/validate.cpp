@@ -303,6 +303,12 @@ void io::check_attributes(const std::string& source, const std::vector<Attribute
                          ", outside 0-" + short_number(top));
     }
   }
+  // Every value one its type holds, so that it is written back as it is.
+  for (const Attribute& attribute : attributes)
+    for (std::size_t i = 0; i < n; ++i)
+      if (!io::type_holds(attribute.type, attribute.values[i]))
+        fail(source, where(i) + ": property " + quote(attribute.name) + " is a " + attribute.type +
+                         ", which cannot hold " + io::format_double(attribute.values[i]));
 }
 
 void validate_mesh(const TriangleMesh& mesh, const std::string& source) {
