@@ -268,6 +268,52 @@ TEST(Pipeline, CallsInsideAStageAreSpacedByTheInterval) {
   EXPECT_GT(calls, 3 * per_stage);
 }
 
+// A size asked for as a triangle count: met within 15 % on a sphere, uniform
+// or adaptive, and refused beside an edge length.
+TEST(Pipeline, TargetFacesSetsTheOutputSize) {
+  const PointSet input = test::sample_sphere(3000);
+  ReconstructOptions o = fast_options(SolverKind::kSsd, 0);  // no target edge
+  for (const int faces : {6000, 24000}) {
+    o.target_faces = faces;
+    const Result r = reconstruct(input, o);
+    EXPECT_NEAR(static_cast<double>(r.mesh.faces.size()), faces, 0.15 * faces);
+    expect_closed_manifold(r.mesh, 0);
+  }
+  o.sizing = SizingKind::kAdaptive;
+  o.target_faces = 12000;
+  EXPECT_NEAR(static_cast<double>(reconstruct(input, o).mesh.faces.size()), 12000, 0.15 * 12000);
+  o.target_edge_length = 0.1;
+  EXPECT_THROW(reconstruct(input, o), InputError);
+}
+
+// Spurious handles (issue 19): two spheres two target edges (and sample
+// spacings) apart are not bridged, and a thin torus sparsely sampled (about 25
+// samples around its tube) keeps genus 1 with the default sizing.
+TEST(Pipeline, TwoSpheresAFewTargetEdgesApartStayTwo) {
+  PointSet input = test::sample_sphere(3000);
+  const ReconstructOptions o = fast_options(SolverKind::kSsd, 0.06);
+  const double gap = 2 * o.target_edge_length;
+  const PointSet other = test::sample_sphere(3000, 1.0, Vec3(2 + gap, 0, 0));
+  input.points.insert(input.points.end(), other.points.begin(), other.points.end());
+  input.normals.insert(input.normals.end(), other.normals.begin(), other.normals.end());
+  const Result r = reconstruct(input, o);
+  const SurfaceTopology topo = surface_topology(r.mesh);
+  EXPECT_TRUE(topo.closed && topo.manifold);
+  EXPECT_EQ(topo.components, 2u);
+  EXPECT_EQ(topo.genus, 0);
+  for (const Vec3& v : r.mesh.vertices)  // nothing in the middle of the gap
+    EXPECT_GT(std::abs(v.x() - (1 + 0.5 * gap)), 0.25 * gap);
+}
+
+TEST(Pipeline, SparseThinTorusKeepsGenusOne) {
+  const PointSet input = test::sample_torus(1000, 1.0, 0.12);
+  const Result r = reconstruct(input, ReconstructOptions{});
+  expect_closed_manifold(r.mesh, 1);
+  const Distances d =
+      vertex_distances(r.mesh, [](const Vec3& p) { return test::distance_to_torus(p, 1.0, 0.12); });
+  EXPECT_LT(d.mean, 0.01);
+}
+
 TEST(Pipeline, SameSeedGivesIdenticalOutput) {
   const PointSet input = test::sample_ellipsoid(1200, Vec3(1.0, 0.7, 0.5));
   ReconstructOptions o = fast_options(SolverKind::kSsd, 0.12);

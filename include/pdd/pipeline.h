@@ -109,6 +109,10 @@ struct ReconstructOptions {
   SizingKind sizing = SizingKind::kUniform;
   double target_area = 0;         // uniform: the target isofacet area; 0: from target_edge_length
   double target_edge_length = 0;  // uniform: the target edge; 0: default_target_edge (sizing.h)
+  // About this many output triangles (0: off): the sizing (uniform or adaptive)
+  // is scaled to it from the isosurface of the early iterations; not with a
+  // target edge or area, or a custom sizing.
+  int target_faces = 0;
   AdaptiveSizingOptions adaptive;  // adaptive sizing of §3.4
   // Library only: overrides `sizing` when set. The run works in coordinates
   // relative to the input's bounding-box centre (reconstruct()); the field is

@@ -40,6 +40,10 @@ double default_target_edge(const PointSet& input);
 // The same target area everywhere.
 std::unique_ptr<SizingField> uniform_sizing(double target_area);
 
+// The target areas of `inner`, each multiplied by `factor` (> 0).
+std::unique_ptr<SizingField> scaled_sizing(std::shared_ptr<const SizingField> inner,
+                                           double factor);
+
 // Any callable from a position (the isofacet's centroid) to a target area.
 std::unique_ptr<SizingField> user_sizing(std::function<double(const Vec3&)> target_area_at);
 

@@ -68,6 +68,7 @@ def reconstruct(
     sizing: Literal["uniform", "adaptive"] = "uniform",
     target_edge: Optional[float] = None,
     target_area: Optional[float] = None,
+    target_faces: int = 0,
     tolerance: Optional[float] = None,
     gradation: float = 1.0,
     iterations: int = 12,

@@ -43,23 +43,6 @@ constexpr double kTrianglesPerPoint = 60;
 constexpr double kMinTriangles = 5000;
 constexpr double kTrianglesPerVertex = 2;
 
-// The target areas of `inner`, each multiplied by `factor`.
-class ScaledSizing final : public SizingField {
- public:
-  ScaledSizing(std::shared_ptr<const SizingField> inner, double factor)
-      : inner_(std::move(inner)), factor_(factor) {}
-  std::vector<double> target_areas(const Domain& domain,
-                                   const std::vector<Isofacet>& facets) const override {
-    std::vector<double> s = inner_->target_areas(domain, facets);
-    for (double& a : s) a *= factor_;
-    return s;
-  }
-
- private:
-  std::shared_ptr<const SizingField> inner_;
-  double factor_;
-};
-
 std::string megabytes(double bytes) {
   return std::to_string(static_cast<long long>(std::ceil(bytes / (1 << 20)))) + " MB";
 }
@@ -107,7 +90,7 @@ bool VertexBudget::fit(std::shared_ptr<const SizingField>& sizing, const Isoface
   if (demand <= static_cast<double>(report_.vertices)) return false;
   const double factor = demand / static_cast<double>(report_.vertices);
   report_.coarsening *= factor;
-  sizing = std::make_shared<ScaledSizing>(std::move(sizing), factor);
+  sizing = scaled_sizing(std::move(sizing), factor);
   return true;
 }
 

@@ -154,6 +154,11 @@ std::vector<OptionSpec> make_specs() {
                      "Uniform sizing: target isofacet area (overrides --target-edge)",
                      [](ReconstructOptions& o) -> double& { return o.target_area; }, 0, false,
                      HUGE_VAL, true));
+  s.push_back(integer(
+      "target-faces",
+      "About this many output triangles (0: off): the sizing, uniform or adaptive, is scaled "
+      "to it from the first iterations' isosurface (instead of --target-edge)",
+      [](ReconstructOptions& o) -> int& { return o.target_faces; }, 0, 1000000000));
   s.push_back(number(
       "tolerance",
       "Adaptive sizing: distance tolerance d of s = 4 sqrt(3) (2d/c - d^2) (default: s at the "

@@ -8,6 +8,7 @@
 
 #include "common/cancellation.h"
 #include "common/enum_names.h"
+#include "pipeline/face_target.h"
 #include "pipeline/memory_budget.h"
 #include "pipeline/normals_step.h"
 #include "pipeline/octree_domain.h"
@@ -132,7 +133,9 @@ class Run {
         solver_(make_solver(options.solver)),
         budget_(options.max_memory, points.size(),
                 options.sizing == SizingKind::kUniform && !options.custom_sizing &&
-                    options.target_area <= 0 && options.target_edge_length <= 0),
+                    options.target_area <= 0 && options.target_edge_length <= 0 &&
+                    options.target_faces == 0),
+        face_target_(static_cast<std::size_t>(options.target_faces)),
         rng_(options.seed),
         start_(start) {}
 
@@ -226,8 +229,12 @@ class Run {
 
   // The isofacets against the sizing's targets, after coarsening the sizing
   // if the final domain they predict would outgrow the memory budget.
+  // The isofacets against the sizing's targets, after scaling the sizing to
+  // the output size asked for (if any), then coarsening it if the final domain
+  // they predict would outgrow the memory budget.
   IsofacetAreaStats within_budget(const Domain& domain, std::shared_ptr<const SizingField>& sizing) {
-    const IsofacetAreaStats stats = isofacet_area_stats(domain, *sizing);
+    IsofacetAreaStats stats = isofacet_area_stats(domain, *sizing);
+    if (face_target_.fit(sizing, stats)) stats = isofacet_area_stats(domain, *sizing);
     return budget_.fit(sizing, stats) ? isofacet_area_stats(domain, *sizing) : stats;
   }
 
@@ -338,6 +345,7 @@ class Run {
   const ReconstructOptions& options_;
   std::unique_ptr<ImplicitSolver> solver_;  // every solve, so that its multigrid keeps the levels
   detail::VertexBudget budget_;
+  detail::FaceTarget face_target_;
   std::mt19937_64 rng_;
   Clock::time_point start_;
   IsoSurface contour_;
@@ -401,6 +409,14 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
   if (options.threads < 0 || options.threads > max_threads())
     throw InputError("reconstruct: threads must be from 0 to " + std::to_string(max_threads()) +
                      ", got " + std::to_string(options.threads));
+  if (options.target_faces < 0)
+    throw InputError("reconstruct: the target face count must be >= 0, got " +
+                     std::to_string(options.target_faces));
+  if (options.target_faces > 0 &&
+      (options.target_edge_length > 0 || options.target_area > 0 || options.custom_sizing))
+    throw InputError(
+        "reconstruct: --target-faces sets the size; give it without --target-edge, "
+        "--target-area or a sizing field of your own");
   if (!(options.min_component_edges >= 0) || !std::isfinite(options.min_component_edges))
     throw InputError("reconstruct: the smallest component size must be >= 0 edge lengths, got " +
                      std::to_string(options.min_component_edges));

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 namespace pdd {
@@ -176,6 +177,33 @@ std::unique_ptr<SizingField> uniform_sizing(double target_area) {
     throw InputError("sizing field: the target area must be positive and finite, got " +
                      std::to_string(target_area));
   return std::make_unique<UniformSizing>(target_area);
+}
+
+namespace {
+
+class ScaledSizing final : public SizingField {
+ public:
+  ScaledSizing(std::shared_ptr<const SizingField> inner, double factor)
+      : inner_(std::move(inner)), factor_(factor) {}
+  std::vector<double> target_areas(const Domain& domain,
+                                   const std::vector<Isofacet>& facets) const override {
+    std::vector<double> s = inner_->target_areas(domain, facets);
+    for (double& a : s) a *= factor_;
+    return s;
+  }
+
+ private:
+  std::shared_ptr<const SizingField> inner_;
+  double factor_;
+};
+
+}  // namespace
+
+std::unique_ptr<SizingField> scaled_sizing(std::shared_ptr<const SizingField> inner,
+                                           double factor) {
+  if (!(factor > 0) || !std::isfinite(factor))
+    throw std::invalid_argument("scaled_sizing: the factor must be positive and finite");
+  return std::make_unique<ScaledSizing>(std::move(inner), factor);
 }
 
 std::unique_ptr<SizingField> coarser_away_from_data(std::shared_ptr<const SizingField> inner,
