@@ -120,6 +120,25 @@ std::shared_ptr<const SizingField> make_sizing(const PointSet& points,
   return coarser_away_from_data(std::move(field), points, options.away_from_data);
 }
 
+// The adaptive sizing at its default tolerance aims at this share of the
+// uniform default's triangles: about its accuracy (Chamfer-L1 within 5 %)
+// with fewer triangles (docs/benchmarks.md, "Adaptive sizing").
+constexpr double kAdaptiveShare = 0.8;
+
+// The output size a run aims at: the user's target_faces or, for the adaptive
+// sizing at its default tolerance, kAdaptiveShare of the uniform default's.
+detail::FaceTarget make_face_target(const PointSet& points, const ReconstructOptions& options) {
+  const bool adaptive = options.sizing == SizingKind::kAdaptive && !options.custom_sizing;
+  if (options.target_faces > 0)
+    return detail::FaceTarget(static_cast<std::size_t>(options.target_faces), adaptive);
+  if (adaptive && options.adaptive.tolerance <= 0) {
+    ReconstructOptions uniform = options;
+    uniform.sizing = SizingKind::kUniform;
+    return detail::FaceTarget(make_sizing(points, uniform), kAdaptiveShare);
+  }
+  return {};
+}
+
 class Run {
  public:
   // `current` is where the run is, sent by `ask` (the progress callback, also
@@ -135,7 +154,7 @@ class Run {
                 options.sizing == SizingKind::kUniform && !options.custom_sizing &&
                     options.target_area <= 0 && options.target_edge_length <= 0 &&
                     options.target_faces == 0),
-        face_target_(static_cast<std::size_t>(options.target_faces)),
+        face_target_(make_face_target(points, options)),
         rng_(options.seed),
         start_(start) {}
 
@@ -234,7 +253,7 @@ class Run {
   // they predict would outgrow the memory budget.
   IsofacetAreaStats within_budget(const Domain& domain, std::shared_ptr<const SizingField>& sizing) {
     IsofacetAreaStats stats = isofacet_area_stats(domain, *sizing);
-    if (face_target_.fit(sizing, stats)) stats = isofacet_area_stats(domain, *sizing);
+    if (face_target_.fit(domain, sizing, stats)) stats = isofacet_area_stats(domain, *sizing);
     return budget_.fit(sizing, stats) ? isofacet_area_stats(domain, *sizing) : stats;
   }
 
