@@ -220,6 +220,13 @@ TEST_F(IoTest, ReadsTextFormatsWithCommentsAndVariants) {
                  "0 0 1 0 0 2 0.5\n3 0 1 2\n"));
   ASSERT_EQ(coff.size(), 4u);
   EXPECT_EQ(coff.normals[3], Vec3(0, 0, 2));
+  EXPECT_TRUE(coff.attributes.empty());  // 3, 3, 4 and 1 colour values: not read, and said
+  ValidationReport report;
+  read_points(path("c.off"), &report);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("line 4: vertex 3 has 4 colour values, the first vertex 3"),
+            std::string::npos)
+      << report.warnings[0];
 
   const PointSet obj = read_points(
       write_file("o.obj",
@@ -507,6 +514,13 @@ TEST_F(IoTest, CountsTheFileCannotHoldFailBeforeAnyRecordIsRead) {
                      {path("j.ply"), "line 7", "element 'junk' declares 9000000000000000000 "
                                                "records but no properties"});
   expect_input_error([&] { read_mesh(path("j.ply")); }, {path("j.ply"), "'junk'"});
+  // None of them is fine (found by fuzz/ply_fuzzer.cpp: the count check divided by their size, 0).
+  std::string tetrahedron;
+  for (const float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f})
+    tetrahedron.append(reinterpret_cast<const char*>(&v), sizeof v);
+  write_file("z.ply", "ply\nformat binary_little_endian 1.0\n" + vertices +
+                          "element empty 0\nend_header\n" + tetrahedron);
+  EXPECT_EQ(read_points(path("z.ply")).size(), 4u);
   // Records of a byte or more: the count against the bytes after the header.
   write_file("k.ply", "ply\nformat binary_big_endian 1.0\n" + vertices +
                           "element junk 9000000000000000000\nproperty list uchar int stuff\n"
@@ -960,12 +974,41 @@ TEST_F(IoTest, OffAndObjCarryTheColours) {
   write_mesh(path("c.off"), m);
   const std::string off = slurp(path("c.off"));
   EXPECT_EQ(off.rfind("COFF\n", 0), 0u) << off;
-  EXPECT_NE(off.find(" 0 255 0 255\n"), std::string::npos) << off;  // red 0, green 255, blue 0
-  EXPECT_EQ(read_mesh(path("c.off")).faces.size(), 4u);
+  EXPECT_NE(off.find(" 0 255 0\n"), std::string::npos) << off;  // red 0, green 255, blue 0
+  // Read back: the colours (not the other properties, which OFF and OBJ do not hold).
+  const TriangleMesh from_off = read_mesh(path("c.off"));
+  EXPECT_EQ(from_off.faces.size(), 4u);
+  ASSERT_EQ(from_off.attributes.size(), 3u);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(from_off.attributes[c].type, "uchar");
+    EXPECT_EQ(from_off.attributes[c].values, m.attributes[c].values);
+  }
   write_mesh(path("c.obj"), m);
   const std::string obj = slurp(path("c.obj"));
   EXPECT_NE(obj.find(" 1 0 0\n"), std::string::npos) << obj;  // vertex 2: red 1, green 0, blue 0
-  EXPECT_EQ(read_mesh(path("c.obj")).faces.size(), 4u);
+  const TriangleMesh from_obj = read_mesh(path("c.obj"));
+  EXPECT_EQ(from_obj.faces.size(), 4u);
+  ASSERT_EQ(from_obj.attributes.size(), 3u);
+  for (int c = 0; c < 3; ++c)
+    for (int i = 0; i < 4; ++i)
+      EXPECT_NEAR(from_obj.attributes[c].values[i] * 255, m.attributes[c].values[i], 1e-4);
+  // COFF with 0-1 reals and alpha; an OBJ whose colours stop halfway; a colour out of range.
+  write_file("r.off", "COFF\n4 0 0\n0 0 0 1 0.5 0 1\n1 0 0 0 0 1 0.25\n0 1 0 1 1 1 1\n0 0 1 0 0 0 1\n");
+  const PointSet reals = read_points(path("r.off"));
+  ASSERT_EQ(reals.attributes.size(), 4u);
+  EXPECT_EQ(reals.attributes[1].type, "float");
+  EXPECT_EQ(reals.attributes[3].name, "alpha");
+  EXPECT_EQ(reals.attributes[3].values[1], 0.25);
+  ValidationReport report;
+  write_file("h.obj", "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0\nv 0 0 1\n");
+  EXPECT_TRUE(read_points(path("h.obj"), &report).attributes.empty());
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_EQ(report.warnings[0], path("h.obj") +
+                                    ": the vertex colours (v x y z r g b) are not read: 2 of "
+                                    "the 4 vertices have one");
+  write_file("o.obj", "v 0 0 0 1 0 0\nv 1 0 0 0 2 0\nv 0 1 0 0 0 1\nv 0 0 1 1 1 1\n");
+  expect_input_error([&] { read_points(path("o.obj")); },
+                     {path("o.obj"), "line 2", "'green' is 2, outside 0-1"});
 }
 
 TEST_F(IoTest, BadColoursAreNamed) {

@@ -26,6 +26,7 @@ struct RawVertices {
   std::vector<Vec3> normals;       // empty, or one per point
   std::vector<Attribute> attributes;  // PLY: every other scalar vertex property
   std::vector<std::size_t> lines;  // line of each point in a text file; empty for binary files
+  std::vector<std::string> remarks;  // what the reader left out, for read_points' warnings
 };
 
 // A mesh as a file holds it: faces are 0-based but not yet range-checked.
@@ -82,6 +83,13 @@ void write_obj(std::ostream& out, const std::vector<Vec3>& vertices,
 // Whether a property of the PLY type `type` (a known one) holds `value`: a
 // whole number in range for the integer types, within float's range for float.
 bool type_holds(const std::string& type, double value);
+
+// The colours of a text format's vertices (COFF, OBJ's "v x y z r g b"), one
+// row of 3 or 4 values per vertex: the attributes red, green, blue [alpha],
+// uchar when `integers` (0-255), else float (0-1, rounded to floats).
+// check_attributes then checks their range.
+std::vector<Attribute> colour_attributes(const std::vector<std::array<double, 4>>& rows,
+                                         int channels, bool integers);
 
 // The colour channels among `attributes` (red, green, blue, then alpha when
 // there), or none when there are no colours.

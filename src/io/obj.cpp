@@ -36,6 +36,7 @@ RawMesh read_obj(const std::string& path, const std::string& data, Content conte
   RawMesh mesh;
   RawVertices& v = mesh.vertices;
   std::vector<Vec3> normals;
+  std::vector<std::array<double, 4>> colours;  // "v x y z r g b": 0-1 reals
   while (reader.next(tokens)) {
     const std::size_t line = reader.line();
     const std::string_view key = tokens[0];
@@ -49,13 +50,16 @@ RawMesh read_obj(const std::string& path, const std::string& data, Content conte
       }
       v.points.emplace_back(double_at(tokens[1], path, line), double_at(tokens[2], path, line),
                             double_at(tokens[3], path, line));
+      std::array<double, 4> colour{};
       for (std::size_t t = 4; t <= n; ++t) {
         const double value = double_at(tokens[t], path, line);
         if (n == 4 && value != 1.0) {
           fail_at_line(path, line,
                        "the weight w = " + quote(tokens[4]) + " is not supported (only 1)");
         }
+        if (n == 6) colour[t - 4] = value;
       }
+      if (n == 6) colours.push_back(colour);
       v.lines.push_back(line);
     } else if (key == "vn") {
       if (n != 3) {
@@ -74,6 +78,14 @@ RawMesh read_obj(const std::string& path, const std::string& data, Content conte
                             corner_vertex(tokens[3], v.points.size(), path, line)});
       mesh.face_lines.push_back(line);
     }
+  }
+  // Colours on every vertex, or none read.
+  if (!colours.empty() && colours.size() != v.points.size()) {
+    v.remarks.push_back("the vertex colours (v x y z r g b) are not read: " +
+                        std::to_string(colours.size()) + " of the " +
+                        std::to_string(v.points.size()) + " vertices have one");
+  } else if (!colours.empty()) {
+    v.attributes = colour_attributes(colours, 3, false);
   }
   if (content == Content::kVertices && !normals.empty()) {
     // OBJ ties normals to face corners, not to vertices; a point set can use

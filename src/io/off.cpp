@@ -81,6 +81,12 @@ RawMesh read_off(const std::string& path, const std::string& data, Content conte
 
   RawMesh mesh;
   RawVertices& v = mesh.vertices;
+  // RGB or RGBA colours, 0-255 integers or 0-1 reals, read when every vertex
+  // has the same count of 3 or 4 (a single value is a colour map index).
+  std::vector<std::array<double, 4>> colours;
+  int channels = -1;
+  std::string unread;  // why the colours are not read
+  bool integers = true;
   for (std::int64_t i = 0; i < header.vertices; ++i) {
     if (!reader.next(tokens)) {
       fail(path, "file is truncated: it ends after " + std::to_string(i) + " of the " +
@@ -98,11 +104,32 @@ RawMesh read_off(const std::string& path, const std::string& data, Content conte
       v.normals.emplace_back(double_at(tokens[3], path, line), double_at(tokens[4], path, line),
                              double_at(tokens[5], path, line));
     }
-    for (std::size_t t = header.normals ? 6 : 3; t < tokens.size(); ++t) {
+    const std::size_t first = header.normals ? 6 : 3;
+    for (std::size_t t = first; t < tokens.size(); ++t) {
       double_at(tokens[t], path, line);  // colours and texture must be numbers too
+    }
+    if (header.colours) {
+      const int count = static_cast<int>(tokens.size() - base);
+      if (channels < 0) channels = count;
+      if (unread.empty() && (count != channels || count < 3))
+        unread = "line " + std::to_string(line) + ": vertex " + std::to_string(i + 1) + " has " +
+                 std::to_string(count) + " colour value" + (count == 1 ? "" : "s") +
+                 (count == channels ? "" : ", the first vertex " + std::to_string(channels));
+      std::array<double, 4> row{};
+      for (int c = 0; c < count; ++c) {
+        const std::string_view token = tokens[first + static_cast<std::size_t>(c)];
+        row[static_cast<std::size_t>(c)] = double_at(token, path, line);
+        integers = integers && token.find_first_of(".eE") == std::string_view::npos;
+      }
+      colours.push_back(row);
     }
     v.lines.push_back(line);
   }
+  if (!unread.empty())
+    v.remarks.push_back("the vertex colours are not read (" + unread +
+                        "; pdd reads RGB or RGBA, the same on every vertex)");
+  else if (channels >= 3)
+    v.attributes = colour_attributes(colours, channels, integers);
   if (content == Content::kVertices) return mesh;
 
   for (std::int64_t i = 0; i < header.faces; ++i) {
@@ -156,9 +183,9 @@ void write_off(std::ostream& out, const std::vector<Vec3>& vertices,
       text += ' ';
       append_double(text, normals[i][k]);
     }
-    // Colours as 0-255 integers, alpha 255 when the input had none.
-    for (std::size_t c = 0; c < 4 && !colours.empty(); ++c) {
-      const double unit = c < colours.size() ? unit_colour(*colours[c], colours[c]->values[i]) : 1;
+    // Colours as 0-255 integers, RGB or RGBA as the input had them.
+    for (const Attribute* channel : colours) {
+      const double unit = unit_colour(*channel, channel->values[i]);
       text += ' ' + std::to_string(static_cast<int>(std::lround(unit * 255)));
     }
     text += '\n';

@@ -250,6 +250,7 @@ void check_counts(const std::string& path, const Header& header, std::size_t bod
   std::uint64_t left = body_bytes;
   for (const Element& element : header.elements) {
     const std::uint64_t size = min_record_bytes(element, header.encoding);
+    if (size == 0) continue;  // no properties, so no records (read_header checks)
     if (element.count > left / size) {
       const bool ascii = header.encoding == Encoding::kAscii;
       fail_at_line(path, element.line,
@@ -681,6 +682,20 @@ void write_ply(std::ostream& out, const std::vector<Vec3>& vertices,
     }
   }
   flush_chunk(true);
+}
+
+std::vector<Attribute> colour_attributes(const std::vector<std::array<double, 4>>& rows,
+                                         int channels, bool integers) {
+  std::vector<Attribute> out;
+  const char* const names[] = {"red", "green", "blue", "alpha"};
+  for (int c = 0; c < channels; ++c) {
+    Attribute a{names[c], integers ? "uchar" : "float", {}};
+    a.values.reserve(rows.size());
+    for (const auto& row : rows)
+      a.values.push_back(integers ? row[c] : static_cast<double>(static_cast<float>(row[c])));
+    out.push_back(std::move(a));
+  }
+  return out;
 }
 
 std::vector<const Attribute*> colour_channels(const std::vector<Attribute>& attributes) {

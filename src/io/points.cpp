@@ -42,7 +42,10 @@ PointSet io::parse_points(const std::string& path, const std::string& data,
   points.points = std::move(raw.points);
   points.normals = std::move(raw.normals);
   points.attributes = std::move(raw.attributes);
-  return io::validate_points_at(std::move(points), path, raw.lines, report, options);
+  PointSet valid = io::validate_points_at(std::move(points), path, raw.lines, report, options);
+  if (report)
+    for (const std::string& remark : raw.remarks) report->warnings.push_back(path + ": " + remark);
+  return valid;
 }
 
 void write_points(const std::string& path, const PointSet& points,
