@@ -5,6 +5,10 @@
 // run stops within a fraction of a second whatever stage it is in.
 #pragma once
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 #include <functional>
 
 namespace pdd::detail {
@@ -33,5 +37,19 @@ class PollScope {
 // Cheap when no scope is installed on this thread or the interval has not
 // passed; call only where an exception may leave (not inside a parallel loop).
 void poll();
+
+// body(i) for i in [0, n) in parallel, a slice at a time with poll() between
+// slices: for the loops that take seconds at a million items.
+template <class Index, class Body>
+void polled_parallel_for(Index n, const Body& body) {
+  constexpr Index kSlice = 1 << 15;
+  for (Index begin = 0; begin < n; begin += kSlice) {
+    const Index end = std::min(n, begin + kSlice);
+    tbb::parallel_for(tbb::blocked_range<Index>(begin, end), [&](const tbb::blocked_range<Index>& r) {
+      for (Index i = r.begin(); i != r.end(); ++i) body(i);
+    });
+    poll();
+  }
+}
 
 }  // namespace pdd::detail

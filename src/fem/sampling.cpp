@@ -3,6 +3,8 @@
 #include <pdd/errors.h>
 #include <pdd/fem.h>
 
+#include "common/cancellation.h"
+
 #include <tbb/parallel_for.h>
 
 #include <atomic>
@@ -16,7 +18,7 @@ std::vector<Location> locate_points(const Domain& domain, const std::vector<Vec3
   std::vector<Location> locations(n);
   // Domain::locate is a read-only walk in the triangulation (CGAL's locate
   // keeps its random state local), so concurrent queries are safe.
-  tbb::parallel_for(0, n, [&](int i) { locations[i] = domain.locate(points[i]); });
+  detail::polled_parallel_for(n, [&](int i) { locations[i] = domain.locate(points[i]); });
   int outside = 0, first = -1;
   for (int i = 0; i < n; ++i)
     if (locations[i].tet < 0) {

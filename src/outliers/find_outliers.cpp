@@ -12,6 +12,7 @@
 #include <cmath>
 #include <string>
 
+#include "common/cancellation.h"
 #include "common/nearest_neighbors.h"
 
 namespace pdd {
@@ -43,7 +44,7 @@ std::vector<char> find_outliers(const std::vector<Vec3>& points, const OutlierOp
   const detail::NearestNeighbors tree(points);
   std::vector<int> neighbours(n * k);
   std::vector<double> spacing(n);  // mean distance to the k nearest other points
-  tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+  detail::polled_parallel_for(n, [&](std::size_t i) {
     const std::vector<int> nearest = tree.query(points[i], options.neighbors + 1);
     std::size_t found = 0;
     double sum = 0;

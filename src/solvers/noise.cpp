@@ -2,6 +2,7 @@
 #include <pdd/errors.h>
 #include <pdd/solvers.h>
 
+#include "common/cancellation.h"
 #include "common/nearest_neighbors.h"
 
 #include <Eigen/Dense>
@@ -50,7 +51,7 @@ double estimate_noise(const PointSet& points, int neighbors) {
   if (static_cast<int>(points.size()) < neighbors) return 0;
   const detail::NearestNeighbors knn(points.points);
   std::vector<double> residual(points.size());
-  tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) {
+  detail::polled_parallel_for(points.size(), [&](std::size_t i) {
     residual[i] = cubic_fit_residual(points.points, knn.query(points.points[i], neighbors));
   });
   const auto quartile = residual.begin() + residual.size() / 4;
