@@ -8,7 +8,10 @@ process (os.wait4), their ratios, and whether both wrote the same mesh. Then the
 to convert a 1M-point array into the library and back.
 
     bash scripts/build.sh && /usr/bin/python3 bench/python_overhead.py [ROUNDS] [--only REGEX]
+        [--input PATH ...]
 
+--input takes other inputs instead (e.g. bench/scale.sh's virtual scans in
+build/scale_inputs/), and writes bench/results/python_overhead_inputs.md instead.
 Prints a Markdown table and writes it to bench/results/python_overhead.md.
 """
 
@@ -29,6 +32,11 @@ only = None
 if "--only" in args:
     i = args.index("--only")
     only = re.compile(args[i + 1])
+    del args[i:i + 2]
+given = []
+while "--input" in args:
+    i = args.index("--input")
+    given.append(pathlib.Path(args[i + 1]))
     del args[i:i + 2]
 rounds = int(args[0]) if args else 3
 
@@ -54,7 +62,7 @@ def run(command, env=None):
 
 def main():
     env = dict(os.environ, PYTHONPATH=str(build / "python"))
-    inputs = sorted(p for p in data.glob("*.ply") if not only or only.search(p.stem))
+    inputs = given or sorted(p for p in data.glob("*.ply") if not only or only.search(p.stem))
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for path in inputs:
@@ -118,7 +126,8 @@ def main():
     lines += [f"- {name}: {seconds * 1000:.1f} ms" for name, seconds in conversions]
     table = "\n".join(lines) + "\n"
     print(table)
-    (root / "bench" / "results" / "python_overhead.md").write_text(table)
+    name = "python_overhead_inputs.md" if given else "python_overhead.md"
+    (root / "bench" / "results" / name).write_text(table)
 
 
 def timed(function):

@@ -70,7 +70,8 @@ struct AdaptiveSizingOptions {
   int jet_degree = 2;        // degree of the fitted jet / Monge form
   double gradation = 1.0;    // lambda of the mapping c' = ((c - c_min)/(c_max - c_min))^lambda ...
   double tolerance = 0;      // d, distance tolerance; <= 0: chosen so that s(c_median) equals
-                             // default_target_area(input)
+                             // default_target_area(input) (a run then scales the field to
+                             // 0.8x the uniform default's triangles: pipeline.h)
   double min_area = 0;       // s_min; <= 0: default_target_area(input) / 16
   double max_area = 0;       // s_max; <= 0: default_target_area(input) * 16
 };

@@ -161,8 +161,8 @@ std::vector<OptionSpec> make_specs() {
       [](ReconstructOptions& o) -> int& { return o.target_faces; }, 0, 1000000000));
   s.push_back(number(
       "tolerance",
-      "Adaptive sizing: distance tolerance d of s = 4 sqrt(3) (2d/c - d^2) (default: s at the "
-      "median curvature equals the uniform default)",
+      "Adaptive sizing: distance tolerance d of s = 4 sqrt(3) (2d/c - d^2) (default: scaled so "
+      "that the output has about 0.8x the triangles of the uniform default)",
       [](ReconstructOptions& o) -> double& { return o.adaptive.tolerance; }, 0, false,
       HUGE_VAL, true));
   s.push_back(number("gradation", "Adaptive sizing: exponent lambda of the curvature mapping",
