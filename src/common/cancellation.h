@@ -2,7 +2,8 @@
 // long loops of its thread (CG iterations, insertions, per-level setups) call
 // poll(), which asks the run's progress callback again at most every
 // `interval` seconds and throws Cancelled when it answers false, so that a
-// run stops within a fraction of a second whatever stage it is in.
+// run stops inside whatever stage it is in (how soon: docs/benchmarks.md,
+// "Cancellation inside a stage").
 #pragma once
 
 #include <tbb/blocked_range.h>
