@@ -5,6 +5,8 @@
 #include <pdd/normals.h>
 #include <pdd/sizing.h>
 
+#include "common/cancellation.h"
+
 #include <algorithm>
 #include <chrono>
 
@@ -46,7 +48,7 @@ std::size_t orient_by_spectral_vote(PointSet& input, const ReconstructOptions& o
       return progress(orient);
     };
   const Result run = reconstruct(input, coarse);
-  if (run.cancelled) throw OrientationCancelled{};
+  if (run.cancelled) throw Cancelled{};
   const Domain& domain = run.domain;
   const double step = 0.25 * edge;
   std::vector<double> vote(input.size(), 0.0);
@@ -117,7 +119,7 @@ PointSet prepare_normals(const PointSet& points, const ReconstructOptions& optio
     const PointSet& prepared = detail::prepare_normals(points, options, storage, done);
     if (report) *report = done;
     return &prepared == &points ? points : storage;
-  } catch (const detail::OrientationCancelled&) {
+  } catch (const detail::Cancelled&) {
     throw InputError(options.source + ": the orientation's coarse run was cancelled");
   }
 }

@@ -6,11 +6,10 @@
 
 namespace pdd::detail {
 
-// Thrown when the progress callback stops the coarse run of the orientation.
-struct OrientationCancelled {};
-
 // `points` itself when its normals are used as given; otherwise `storage`,
 // filled with the points and their new normals. `report` says what was done.
+// Throws Cancelled (common/cancellation.h) when the progress callback stops
+// the orientation's coarse run.
 const PointSet& prepare_normals(const PointSet& points, const ReconstructOptions& options,
                                 PointSet& storage, NormalsReport& report);
 

@@ -246,8 +246,6 @@ class Run {
     return Domain::initial(points_, options_.domain);
   }
 
-  // The isofacets against the sizing's targets, after coarsening the sizing
-  // if the final domain they predict would outgrow the memory budget.
   // The isofacets against the sizing's targets, after scaling the sizing to
   // the output size asked for (if any), then coarsening it if the final domain
   // they predict would outgrow the memory budget.
@@ -460,7 +458,6 @@ Result reconstruct(const PointSet& points, const ReconstructOptions& options) {
   try {
     return run_stages(points, options, current, ask, start);
   } catch (const detail::Cancelled&) {
-  } catch (const detail::OrientationCancelled&) {
   }
   Result cancelled;
   cancelled.cancelled = true;
