@@ -223,6 +223,36 @@ TEST_F(FemTest, SamplingMatrixInterpolatesLinearFunctionsExactly) {
   }
 }
 
+// Thousands of samples in a domain of 30k vertices: located in spatial order
+// from one another's tets, each lands in a tet that holds it, as a walk from
+// scratch (Domain::locate) finds.
+TEST(Sampling, LocatedFromTheirNeighboursPointsLieInTheirTets) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Vec3> corners_and_inside;
+  for (int i = 0; i < 8; ++i) corners_and_inside.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  for (int i = 0; i < 30000; ++i) corners_and_inside.emplace_back(u(rng), u(rng), u(rng));
+  const Domain domain(corners_and_inside);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 5000; ++i) points.emplace_back(u(rng), u(rng), u(rng));
+  const std::vector<Location> loc = locate_points(domain, points);
+  const auto& x = domain.vertices();
+  std::vector<double> values;  // a function that differs from tet to tet
+  for (const Vec3& v : x) values.push_back(v.squaredNorm());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    ASSERT_GE(loc[i].tet, 0);
+    const auto& tet = domain.tets()[loc[i].tet];
+    Vec3 p = Vec3::Zero();
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_GE(loc[i].barycentric[k], -1e-12);
+      p += loc[i].barycentric[k] * x[tet[k]];
+    }
+    EXPECT_LT((p - points[i]).norm(), 1e-12);
+    const Location alone = domain.locate(points[i]);
+    EXPECT_NEAR(domain.interpolate(loc[i], values), domain.interpolate(alone, values), 1e-12);
+  }
+}
+
 TEST_F(FemTest, SelectionMatrixPicksTheGradientOfEachPointsTet) {
   const std::vector<Vec3> points = {Vec3(0.5, 0.5, 0.5), Vec3(0.1, 0.9, 0.2),
                                     Vec3(0.5, 0.5, 0.5)};

@@ -1,3 +1,5 @@
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/compute_average_spacing.h>
 #include <pdd/errors.h>
 #include <pdd/refine.h>
 
@@ -213,6 +215,20 @@ TEST(Sizing, AdaptiveIsDenserWhereCurvatureIsHigher) {
   const double rho = spearman(area, local);
   std::cout << "facets " << facets.size() << " spearman(area, curvature) " << rho << "\n";
   EXPECT_LT(rho, -0.5);
+}
+
+// pdd's average spacing is CGAL's compute_average_spacing, written out to be
+// cancellable and parallel: the same value on an uneven sample.
+TEST(Sizing, AverageSpacingIsCgals) {
+  PointSet input = test::sample_sphere(4000);
+  for (std::size_t i = 0; i < input.size(); i += 3) input.points[i] *= 1.0 + 0.01 * (i % 7);
+  using Point = CGAL::Simple_cartesian<double>::Point_3;
+  std::vector<Point> points;
+  for (const Vec3& p : input.points) points.emplace_back(p.x(), p.y(), p.z());
+  for (const int k : {6, 12}) {
+    const double cgal = CGAL::compute_average_spacing<CGAL::Sequential_tag>(points, k);
+    EXPECT_NEAR(average_spacing(input, k), cgal, 1e-12 * cgal) << k;
+  }
 }
 
 TEST(Sizing, DefaultEdgeIsTheSpacingUpToTheCapAndFinerBeyond) {

@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <functional>
 
 namespace pdd::detail {
@@ -39,18 +40,32 @@ class PollScope {
 // passed; call only where an exception may leave (not inside a parallel loop).
 void poll();
 
-// body(i) for i in [0, n) in parallel, a slice at a time with poll() between
-// slices: for the loops that take seconds at a million items.
-template <class Index, class Body>
-void polled_parallel_for(Index n, const Body& body) {
-  constexpr Index kSlice = 1 << 15;
-  for (Index begin = 0; begin < n; begin += kSlice) {
-    const Index end = std::min(n, begin + kSlice);
-    tbb::parallel_for(tbb::blocked_range<Index>(begin, end), [&](const tbb::blocked_range<Index>& r) {
-      for (Index i = r.begin(); i != r.end(); ++i) body(i);
-    });
+// For a serial loop over a million items: poll() once every 65536 of them.
+inline void poll_every(std::size_t i) {
+  if ((i & 0xFFFF) == 0xFFFF) poll();
+}
+
+// body(range) over [0, n) in parallel (tbb::blocked_range<Index>), a slice of
+// `slice` items at a time with poll() between slices: for the loops that take
+// seconds at a million items.
+template <class Index, class RangeBody>
+void polled_parallel_ranges(Index n, const RangeBody& body, Index slice = Index(1) << 15) {
+  for (Index begin = 0; begin < n; begin += slice) {
+    const Index end = std::min(n, begin + slice);
+    tbb::parallel_for(tbb::blocked_range<Index>(begin, end), body);
     poll();
   }
+}
+
+// body(i) for i in [0, n), the same way.
+template <class Index, class Body>
+void polled_parallel_for(Index n, const Body& body, Index slice = Index(1) << 15) {
+  polled_parallel_ranges(
+      n,
+      [&](const tbb::blocked_range<Index>& r) {
+        for (Index i = r.begin(); i != r.end(); ++i) body(i);
+      },
+      slice);
 }
 
 }  // namespace pdd::detail

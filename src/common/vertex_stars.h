@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "common/cancellation.h"
+
 namespace pdd::detail {
 
 // Vertex -> incident tets, in increasing tet order (compressed rows).
@@ -27,17 +29,21 @@ inline VertexStars vertex_stars(const TetMesh& mesh) {
   VertexStars s;
   const int n = static_cast<int>(mesh.vertices.size());
   s.offsets.assign(n + 1, 0);
-  for (const auto& tet : mesh.tets)
-    for (int v : tet) {
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    for (int v : mesh.tets[t]) {
       if (v < 0 || v >= n)
         throw std::invalid_argument("tet mesh: a tet refers to a missing vertex");
       ++s.offsets[v + 1];
     }
+    poll_every(t);  // the run's cancellation
+  }
   for (int v = 0; v < n; ++v) s.offsets[v + 1] += s.offsets[v];
   s.tets.resize(s.offsets[n]);
   std::vector<int> fill(s.offsets.begin(), s.offsets.end() - 1);
-  for (int t = 0; t < static_cast<int>(mesh.tets.size()); ++t)
+  for (int t = 0; t < static_cast<int>(mesh.tets.size()); ++t) {
     for (int v : mesh.tets[t]) s.tets[fill[v]++] = t;
+    poll_every(t);
+  }
   return s;
 }
 
@@ -62,7 +68,7 @@ inline std::vector<std::vector<int>> one_rings(const TetMesh& mesh, const Vertex
   const int n = static_cast<int>(mesh.vertices.size());
   std::vector<std::vector<int>> rings(n);
   PerThreadTable markers = per_thread_table(n);
-  tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
+  polled_parallel_ranges(n, [&](const tbb::blocked_range<int>& r) {
     std::vector<int>& marker = markers.local();
     for (int v = r.begin(); v < r.end(); ++v) {
       std::vector<int>& ring = rings[v];

@@ -17,6 +17,8 @@
 #include <utility>
 #include <vector>
 
+#include "common/cancellation.h"
+
 namespace pdd {
 namespace {
 
@@ -57,10 +59,12 @@ class Cleaner {
     for (Edge e : stack) queued[e.idx()] = 1;
     const std::size_t cap = 10 * m_.number_of_edges();
     int flips = 0;
-    while (!stack.empty() && static_cast<std::size_t>(flips) < cap) {
+    for (std::size_t visits = 0; !stack.empty() && static_cast<std::size_t>(flips) < cap;
+         ++visits) {
       const Edge e = stack.back();
       stack.pop_back();
       queued[e.idx()] = 0;
+      detail::poll_every(visits);  // the run's cancellation
       if (m_.is_removed(e) || !should_flip(e)) continue;
       const Halfedge h = m_.halfedge(e);
       CGAL::Euler::flip_edge(h, m_);
@@ -83,6 +87,7 @@ class Cleaner {
   int collapse_needles() {
     int collapses = 0;
     for (Face f : std::vector<Face>(m_.faces().begin(), m_.faces().end())) {
+      detail::poll_every(f.idx());
       if (m_.is_removed(f)) continue;
       const Halfedge h = shortest_edge_if_needle(f);
       if (h == Mesh::null_halfedge()) continue;
@@ -181,9 +186,12 @@ CleanupReport cleanup_isosurface(TriangleMesh& mesh, const CleanupOptions& optio
   vertex.reserve(mesh.vertices.size());
   for (const Vec3& p : mesh.vertices)
     vertex.push_back(m.add_vertex(Kernel::Point_3(p.x(), p.y(), p.z())));
-  for (const auto& f : mesh.faces)
+  for (std::size_t k = 0; k < mesh.faces.size(); ++k) {
+    const auto& f = mesh.faces[k];
     if (m.add_face(vertex[f[0]], vertex[f[1]], vertex[f[2]]) == Mesh::null_face())
       throw std::invalid_argument("cleanup_isosurface: the mesh is not an oriented manifold");
+    detail::poll_every(k);
+  }
 
   Cleaner cleaner(m, options);
   CleanupReport report;

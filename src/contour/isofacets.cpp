@@ -5,6 +5,8 @@
 
 #include <algorithm>
 
+#include "common/cancellation.h"
+
 namespace pdd {
 namespace {
 
@@ -73,11 +75,14 @@ std::vector<Isofacet> isofacets(const TetMesh& mesh, const std::vector<double>& 
   const int m = static_cast<int>(mesh.tets.size());
   const int blocks = (m + kBlock - 1) / kBlock;
   std::vector<std::vector<Isofacet>> found(blocks);
-  tbb::parallel_for(0, blocks, [&](int k) {
-    Isofacet a;
-    for (int t = k * kBlock; t < std::min(m, (k + 1) * kBlock); ++t)
-      if (isofacet(mesh, f, isovalue, t, a)) found[k].push_back(a);
-  });
+  detail::polled_parallel_for(
+      blocks,
+      [&](int k) {
+        Isofacet a;
+        for (int t = k * kBlock; t < std::min(m, (k + 1) * kBlock); ++t)
+          if (isofacet(mesh, f, isovalue, t, a)) found[k].push_back(a);
+      },
+      4);
   std::size_t total = 0;
   for (const auto& b : found) total += b.size();
   std::vector<Isofacet> out;

@@ -16,6 +16,8 @@
 #include <unordered_map>
 #include <utility>
 
+#include "common/cancellation.h"
+
 namespace pdd {
 namespace {
 
@@ -26,7 +28,10 @@ class Contourer {
       : mesh_(mesh), f_(f), isovalue_(isovalue) {}
 
   IsoSurface run() {
-    for (std::size_t t = 0; t < mesh_.tets.size(); ++t) contour_tet(static_cast<int>(t));
+    for (std::size_t t = 0; t < mesh_.tets.size(); ++t) {
+      contour_tet(static_cast<int>(t));
+      detail::poll_every(t);  // the run's cancellation
+    }
     return std::move(out_);
   }
 

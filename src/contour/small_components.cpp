@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/cancellation.h"
 #include "common/nearest_neighbors.h"
 #include "common/union_find.h"
 #include "contour/components.h"
@@ -25,8 +26,11 @@ using detail::find_root;
 
 Components components(const TriangleMesh& mesh) {
   std::vector<int> parent = singletons(mesh.vertices.size());
-  for (const auto& f : mesh.faces)
+  for (std::size_t k = 0; k < mesh.faces.size(); ++k) {
+    const auto& f = mesh.faces[k];
     for (int i = 0; i < 3; ++i) parent[find_root(parent, f[i])] = find_root(parent, f[(i + 1) % 3]);
+    detail::poll_every(k);  // the run's cancellation
+  }
   Components c;
   c.root_of.resize(parent.size());
   for (std::size_t v = 0; v < parent.size(); ++v)
@@ -94,6 +98,7 @@ RemovedComponents remove_small_components(TriangleMesh& mesh, double min_edges) 
   const double min_diagonal = min_edges * edge_sum / (3.0 * static_cast<double>(mesh.faces.size()));
 
   const Components c = components(mesh);
+  detail::poll();
   const std::vector<Eigen::AlignedBox3d> box = detail::component_boxes(mesh, c);
   std::vector<char> small(x.size(), 0);
   for (std::size_t r = 0; r < x.size(); ++r)
@@ -105,18 +110,33 @@ RemovedComponents remove_small_components(TriangleMesh& mesh, double min_edges) 
 RemovedComponents remove_open_components(TriangleMesh& mesh) {
   if (mesh.faces.empty()) return {};
   const Components c = components(mesh);
-  // An edge that one face alone has is a boundary edge.
-  std::vector<std::pair<int, int>> edges;
-  edges.reserve(3 * mesh.faces.size());
+  // An edge that one face alone has is a boundary edge. The edges are
+  // bucketed by their smaller end (a counting sort: linear, and polled), then
+  // sorted within their bucket of a few.
+  const std::size_t nv = mesh.vertices.size();
+  std::vector<std::size_t> first(nv + 1, 0);
   for (const auto& f : mesh.faces)
-    for (int i = 0; i < 3; ++i) edges.push_back(std::minmax(f[i], f[(i + 1) % 3]));
-  std::sort(edges.begin(), edges.end());
-  std::vector<char> open(mesh.vertices.size(), 0);
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i + 1;
-    while (j < edges.size() && edges[j] == edges[i]) ++j;
-    if (j - i == 1 && c.root_of[edges[i].first] != c.largest) open[c.root_of[edges[i].first]] = 1;
-    i = j;
+    for (int i = 0; i < 3; ++i) ++first[std::min(f[i], f[(i + 1) % 3]) + 1];
+  for (std::size_t v = 0; v < nv; ++v) first[v + 1] += first[v];
+  std::vector<int> other(first[nv]);
+  std::vector<std::size_t> fill(first.begin(), first.end() - 1);
+  for (const auto& f : mesh.faces)
+    for (int i = 0; i < 3; ++i) {
+      const auto [a, b] = std::minmax(f[i], f[(i + 1) % 3]);
+      other[fill[a]++] = b;
+    }
+  detail::poll();
+  std::vector<char> open(nv, 0);
+  for (std::size_t v = 0; v < nv; ++v) {
+    detail::poll_every(v);
+    const auto begin = other.begin() + first[v], end = other.begin() + first[v + 1];
+    std::sort(begin, end);
+    for (auto i = begin; i != end;) {
+      auto j = i + 1;
+      while (j != end && *j == *i) ++j;
+      if (j - i == 1 && c.root_of[v] != c.largest) open[c.root_of[v]] = 1;
+      i = j;
+    }
   }
   return remove_marked(mesh, c, open);
 }
@@ -139,9 +159,10 @@ RemovedComponents remove_unsupported_components(TriangleMesh& mesh,
       vertices.push_back(mesh.vertices[v]);
       vertex_root.push_back(c.root_of[v]);
     }
+  detail::poll();
   const detail::NearestNeighbors tree(vertices);
   std::vector<int> nearest_root(samples.size());
-  tbb::parallel_for(std::size_t(0), samples.size(), [&](std::size_t i) {
+  detail::polled_parallel_for(samples.size(), [&](std::size_t i) {
     nearest_root[i] = vertex_root[tree.query(samples[i], 1)[0]];
   });
   std::vector<double> support(mesh.vertices.size(), 0), area(mesh.vertices.size(), 0);

@@ -112,7 +112,9 @@ std::vector<int> Domain::insert(const std::vector<Vec3>& points, std::uint8_t fl
   // that the order of insertion does not change them.
   std::vector<double> values(points.size());
   Delaunay::Cell_handle hint;
+  std::size_t located = 0;
   for (const auto& [point, i] : order) {
+    detail::poll_every(++located);  // the run's cancellation
     hint = d.finite_cell_containing(points[i], hint);
     if (hint == Delaunay::Cell_handle())
       throw std::invalid_argument("Domain::insert: point outside the domain");
@@ -154,6 +156,7 @@ Domain Domain::moved(const std::vector<Vec3>& new_positions) const {
   for (std::size_t i = 0; i < n; ++i) {
     const auto c = d.finite_cell_containing(new_positions[i], d.handles[i]->cell());
     f[i] = c == Delaunay::Cell_handle() ? d.f[i] : d.interpolate_in(c, new_positions[i], d.f);
+    detail::poll_every(i);  // the run's cancellation
   }
   return moved(new_positions, std::move(f));
 }
@@ -173,13 +176,7 @@ Domain Domain::moved(const std::vector<Vec3>& new_positions, std::vector<double>
   std::vector<detail::Point> points;
   points.reserve(n);
   for (const Vec3& p : new_positions) points.push_back(to_point(p));
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  CGAL::spatial_sort<CGAL::Sequential_tag>(
-      order.begin(), order.end(),
-      CGAL::Spatial_sort_traits_adapter_3<detail::Kernel,
-                                          CGAL::Pointer_property_map<detail::Point>::type>(
-          CGAL::make_property_map(points)));
+  const std::vector<std::size_t> order = detail::spatial_order(points);
   Delaunay::Vertex_handle hint;
   for (std::size_t k = 0; k < n; ++k) {
     if (k % 4096 == 4095) detail::poll();

@@ -4,6 +4,7 @@
 
 #include <pdd/domain.h>
 
+#include "common/cancellation.h"
 #include "domain/triangulation.h"
 
 #include <Eigen/Geometry>
@@ -42,16 +43,23 @@ struct Domain::Impl {
     }
     cells.clear();
     tets.clear();
-    for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) c->info() = -1;
+    std::size_t k = 0;  // the run's cancellation is polled along the passes over the cells
+    for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
+      c->info() = -1;
+      detail::poll_every(++k);
+    }
     for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
       c->info() = static_cast<int>(cells.size());
       cells.push_back(c);
       tets.push_back({c->vertex(0)->info(), c->vertex(1)->info(), c->vertex(2)->info(),
                       c->vertex(3)->info()});
+      detail::poll_every(++k);
     }
     neighbors.resize(cells.size());
-    for (std::size_t t = 0; t < cells.size(); ++t)
+    for (std::size_t t = 0; t < cells.size(); ++t) {
       for (int i = 0; i < 4; ++i) neighbors[t][i] = cells[t]->neighbor(i)->info();
+      detail::poll_every(t);
+    }
   }
 
   // Bounding sphere of the vertices (used when no domain sphere is known).

@@ -9,6 +9,12 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
+#include <CGAL/Spatial_sort_traits_adapter_3.h>
+#include <CGAL/property_map.h>
+#include <CGAL/spatial_sort.h>
+
+#include <numeric>
+#include <vector>
 
 namespace pdd::detail {
 
@@ -22,5 +28,17 @@ using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, Tds>;
 
 inline Point to_point(const Vec3& v) { return Point(v.x(), v.y(), v.z()); }
 inline Vec3 to_vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
+
+// The indices of `points` in CGAL's spatial (Hilbert, BRIO) order, the order
+// its range insertion uses: each point near the one before it.
+inline std::vector<std::size_t> spatial_order(const std::vector<Point>& points) {
+  std::vector<std::size_t> order(points.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  CGAL::spatial_sort<CGAL::Sequential_tag>(
+      order.begin(), order.end(),
+      CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::Pointer_property_map<Point>::const_type>(
+          CGAL::make_property_map(points)));
+  return order;
+}
 
 }  // namespace pdd::detail

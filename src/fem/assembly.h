@@ -10,6 +10,7 @@
 
 #include <pdd/fem.h>
 
+#include "common/cancellation.h"
 #include "common/vertex_stars.h"
 
 #include <tbb/blocked_range.h>
@@ -54,8 +55,8 @@ inline TetGradients tet_gradients(const TetMesh& mesh, int t) {
 // below visit each tet from the columns of its four corners.
 inline std::vector<TetGradients> all_tet_gradients(const TetMesh& mesh) {
   std::vector<TetGradients> g(mesh.tets.size());
-  tbb::parallel_for(std::size_t(0), g.size(),
-                    [&](std::size_t t) { g[t] = tet_gradients(mesh, static_cast<int>(t)); });
+  polled_parallel_for(g.size(),
+                      [&](std::size_t t) { g[t] = tet_gradients(mesh, static_cast<int>(t)); });
   return g;
 }
 
@@ -83,7 +84,7 @@ SparseMatrix assemble_by_columns(const TetMesh& mesh, const VertexStars& stars, 
   for (int j = 0; j <= n; ++j) outer[j] = static_cast<int>(start[j]);
   // Per thread, the position of each vertex in the current column's ring.
   PerThreadTable positions = per_thread_table(n);
-  tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
+  polled_parallel_ranges(n, [&](const tbb::blocked_range<int>& r) {
     double local[4 * Blocks];
     std::vector<int>& position = positions.local();
     for (int j = r.begin(); j < r.end(); ++j) {

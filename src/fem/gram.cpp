@@ -60,6 +60,7 @@ SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values)
     start[j + 1] = count;
   });
   for (int j = 0; j < n; ++j) start[j + 1] += start[j];
+  detail::poll();
   if (start[n] > std::numeric_limits<int>::max())
     throw std::length_error("fem: product has more non-zeros than an int index can hold");
 
@@ -168,6 +169,7 @@ SparseMatrix hessian_energy(const TetMesh& mesh) {
   // (H_v)_{ab, k} = sum_t vol_t d_b(phi_v) d_a(phi_k) = (H_k)_{ba, v}, so
   // no transpose of H is needed.
   const SparseMatrix H = detail::hessian_matrix_rows(mesh, true);
+  detail::poll();  // the run's cancellation
   const Eigen::VectorXd inverse_mass = vertex_masses(mesh).cwiseInverse();
   const int* h_outer = H.outerIndexPtr();
   const int* h_inner = H.innerIndexPtr();

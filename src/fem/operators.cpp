@@ -16,7 +16,7 @@ using detail::TetGradients;
 Eigen::VectorXd tet_volumes(const TetMesh& mesh) {
   const int nt = static_cast<int>(mesh.tets.size());
   Eigen::VectorXd vol(nt);
-  tbb::parallel_for(0, nt, [&](int t) { vol[t] = tet_gradients(mesh, t).volume; });
+  detail::polled_parallel_for(nt, [&](int t) { vol[t] = tet_gradients(mesh, t).volume; });
   return vol;
 }
 
@@ -25,7 +25,7 @@ Eigen::VectorXd vertex_masses(const TetMesh& mesh) {
   const detail::VertexStars stars = detail::vertex_stars(mesh);
   const int n = static_cast<int>(mesh.vertices.size());
   Eigen::VectorXd mass(n);
-  tbb::parallel_for(0, n, [&](int v) {
+  detail::polled_parallel_for(n, [&](int v) {
     double m = 0;
     for (int s = stars.begin(v); s < stars.end(v); ++s) m += vol[stars.tets[s]];
     mass[v] = m / 4.0;
@@ -41,6 +41,7 @@ Eigen::VectorXd gradient_transpose_times(const TetMesh& mesh, const std::vector<
     if (per_tet[t].isZero(0)) continue;
     const TetGradients g = detail::tet_gradients(mesh, static_cast<int>(t));
     for (int i = 0; i < 4; ++i) out[mesh.tets[t][i]] += g.grad[i].dot(per_tet[t]);
+    detail::poll_every(t);  // the run's cancellation
   }
   return out;
 }

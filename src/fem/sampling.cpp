@@ -4,9 +4,11 @@
 #include <pdd/fem.h>
 
 #include "common/cancellation.h"
+#include "domain/triangulation.h"
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <sstream>
 #include <stdexcept>
@@ -16,9 +18,28 @@ namespace pdd {
 std::vector<Location> locate_points(const Domain& domain, const std::vector<Vec3>& points) {
   const int n = static_cast<int>(points.size());
   std::vector<Location> locations(n);
-  // Domain::locate is a read-only walk in the triangulation (CGAL's locate
-  // keeps its random state local), so concurrent queries are safe.
-  detail::polled_parallel_for(n, [&](int i) { locations[i] = domain.locate(points[i]); });
+  // In spatial order (CGAL's Hilbert sort), each point located from the tet
+  // of the one before it: a walk of a few steps instead of one across the
+  // domain. Blocks of a fixed size start afresh, so that the locations do not
+  // depend on the thread count; Domain::locate only reads the triangulation
+  // (CGAL's walk keeps its random state local), so blocks run concurrently.
+  std::vector<detail::Point> cgal_points;
+  cgal_points.reserve(n);
+  for (const Vec3& p : points) cgal_points.push_back(detail::to_point(p));
+  const std::vector<std::size_t> order = detail::spatial_order(cgal_points);
+  constexpr int kBlock = 256;
+  const auto& tets = domain.tets();
+  detail::polled_parallel_for(
+      (n + kBlock - 1) / kBlock,
+      [&](int b) {
+        int near = -1;
+        for (int k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k) {
+          const std::size_t i = order[k];
+          locations[i] = near < 0 ? domain.locate(points[i]) : domain.locate(points[i], near);
+          if (locations[i].tet >= 0) near = tets[locations[i].tet][0];
+        }
+      },
+      128);
   int outside = 0, first = -1;
   for (int i = 0; i < n; ++i)
     if (locations[i].tet < 0) {

@@ -81,11 +81,11 @@ void add_asap_term(const Domain& domain, double weight_scale, QuadraticAccumulat
   };
 
   std::vector<double> volume(m);
-  tbb::parallel_for(std::size_t(0), m, [&](std::size_t t) { volume[t] = signed_volume(corners(t)); });
+  detail::polled_parallel_for(m, [&](std::size_t t) { volume[t] = signed_volume(corners(t)); });
 
   // vol_bar(t): the mean of the volumes of t and of the tets adjacent to it.
   std::vector<std::array<Vec3, 4>> targets(m);
-  tbb::parallel_for(std::size_t(0), m, [&](std::size_t t) {
+  detail::polled_parallel_for(m, [&](std::size_t t) {
     double sum = volume[t];
     int count = 1;
     for (int nb : neighbors[t])
@@ -111,8 +111,10 @@ void add_asap_term(const Domain& domain, double weight_scale, QuadraticAccumulat
       q.b.segment<3>(3 * j) += weight[t] * targets[t][jl];
     }
   });
-  for (std::size_t t = 0; t < m; ++t)
+  for (std::size_t t = 0; t < m; ++t) {
     for (int i = 0; i < 4; ++i) q.c += weight[t] * targets[t][i].squaredNorm();
+    detail::poll_every(t);
+  }
 }
 
 }  // namespace pdd::optimize_detail

@@ -19,7 +19,10 @@ std::vector<double> damping_factors(const Domain& domain) {
   // vertex, f >= 0 on another).
   double fs_min = std::numeric_limits<double>::infinity();
   double fs_max = -fs_min;
-  for (const auto& t : domain.tets()) {
+  const auto& tets = domain.tets();
+  for (std::size_t k = 0; k < tets.size(); ++k) {
+    detail::poll_every(k);  // the run's cancellation
+    const auto& t = tets[k];
     int negative = 0;
     for (int v : t) negative += f[v] < 0;
     if (negative == 0 || negative == 4) continue;

@@ -28,6 +28,7 @@ DomainEnergy domain_energy(const Domain& domain, const OptimizerOptions& options
   DomainEnergy energy;
   energy.diameter = triangulation_diameter(domain);
   energy.fixed = boundary_vertices(domain, options.boundary_band * energy.diameter);
+  detail::poll();  // the run's cancellation, between the steps
 
   for (const auto& t : domain.tets()) {
     int negative = 0;
@@ -36,6 +37,7 @@ DomainEnergy domain_energy(const Domain& domain, const OptimizerOptions& options
   }
 
   QuadraticAccumulator q(domain);
+  detail::poll();
   // Lengths are measured in units of r(T), so that E is dimensionless and
   // the minimizer invariant to rigid motion and uniform scaling: w_a =
   // vol(t) / r^3 and w_m = area(a_t) / r^2 as in §3.3, E_a, E_m and E_d
@@ -45,7 +47,7 @@ DomainEnergy domain_energy(const Domain& domain, const OptimizerOptions& options
   if (r > 0) {
     if (options.asap && options.lambda_asap > 0)
       add_asap_term(domain, options.lambda_asap / std::pow(r, 5), q);
-    detail::poll();  // the run's cancellation, between the terms
+    detail::poll();
     if (options.mid_edge && options.lambda_mid_edge > 0)
       add_mid_edge_term(domain, options.lambda_mid_edge / std::pow(r, 4), q);
     detail::poll();
@@ -53,7 +55,8 @@ DomainEnergy domain_energy(const Domain& domain, const OptimizerOptions& options
       add_damping_term(domain, energy.fixed, options.damping_weight / (r * r), q);
   }
 
-  energy.A = q.matrix();
+  detail::poll();
+  q.matrix().swap(energy.A);  // Eigen 3.4's SparseMatrix has no move: = would copy
   energy.b = std::move(q.b);
   energy.c = q.c;
   return energy;

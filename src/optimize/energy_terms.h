@@ -4,6 +4,7 @@
 
 #include <pdd/domain.h>
 
+#include "common/cancellation.h"
 #include "common/vertex_stars.h"
 
 #include <tbb/blocked_range.h>
@@ -41,7 +42,7 @@ class QuadraticAccumulator {
     // Per thread, the block of each row vertex in the current column: a
     // table lookup instead of a search of the column for every term.
     detail::PerThreadTable slots = detail::per_thread_table(n);
-    tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
+    detail::polled_parallel_ranges(n, [&](const tbb::blocked_range<int>& r) {
       std::vector<int>& slot = slots.local();
       for (int j = r.begin(); j < r.end(); ++j) {
         for (int s = offsets_[j]; s < offsets_[j + 1]; ++s) slot[rows_[s]] = s;
@@ -64,7 +65,7 @@ class QuadraticAccumulator {
     detail::PerThreadTable slots = detail::per_thread_table(n);
     std::vector<char> touched(rows_.size(), 0);
     auto each_column = [&](auto&& visit, bool adding) {
-      tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
+      detail::polled_parallel_ranges(n, [&](const tbb::blocked_range<int>& r) {
         std::vector<int>& slot = slots.local();
         for (int j = r.begin(); j < r.end(); ++j) {
           for (int s = offsets_[j]; s < offsets_[j + 1]; ++s) slot[rows_[s]] = s;
@@ -77,11 +78,13 @@ class QuadraticAccumulator {
       });
     };
     each_column([&](int s, const Eigen::Matrix3d&) { touched[s] = 1; }, false);
-    for (std::size_t s = 0; s < touched.size(); ++s)
+    for (std::size_t s = 0; s < touched.size(); ++s) {
       if (touched[s] && coupled_index_[s] < 0) {
         coupled_index_[s] = static_cast<int>(coupled_.size());
         coupled_.push_back(Eigen::Matrix3d::Zero());
       }
+      detail::poll_every(s);  // the run's cancellation
+    }
     each_column([&](int s, const Eigen::Matrix3d& m) { coupled_[coupled_index_[s]] += m; }, true);
   }
 

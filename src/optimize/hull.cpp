@@ -44,10 +44,12 @@ std::vector<std::array<int, 3>> hull_faces(const Domain& domain) {
   std::vector<std::array<int, 3>> faces;
   const auto& tets = domain.tets();
   const auto& neighbors = domain.tet_neighbors();
-  for (std::size_t t = 0; t < tets.size(); ++t)
+  for (std::size_t t = 0; t < tets.size(); ++t) {
     for (int i = 0; i < 4; ++i)
       if (neighbors[t][i] < 0)
         faces.push_back({tets[t][(i + 1) % 4], tets[t][(i + 2) % 4], tets[t][(i + 3) % 4]});
+    detail::poll_every(t);  // the run's cancellation
+  }
   return faces;
 }
 
@@ -83,7 +85,7 @@ std::vector<bool> boundary_vertices(const Domain& domain, double band) {
   }
   std::vector<char> near(n, 0);  // written concurrently: no std::vector<bool>
   const double band2 = band * band;
-  tbb::parallel_for(std::size_t(0), n, [&](std::size_t v) {
+  detail::polled_parallel_for(n, [&](std::size_t v) {
     if (!fixed[v] && (x[v] - c).norm() > inner - band)
       near[v] = tree.squared_distance(to_point(x[v])) < band2;
   });

@@ -104,13 +104,17 @@ Eigen::VectorXd minimize(const DomainEnergy& energy, const Eigen::VectorXd& x0,
 std::vector<double> shortest_edges(const Domain& domain) {
   const auto& x = domain.vertices();
   std::vector<double> shortest(x.size(), std::numeric_limits<double>::infinity());
-  for (const auto& t : domain.tets())
+  const auto& tets = domain.tets();
+  for (std::size_t k = 0; k < tets.size(); ++k) {
+    const auto& t = tets[k];
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j) {
         const double length = (x[t[i]] - x[t[j]]).norm();
         shortest[t[i]] = std::min(shortest[t[i]], length);
         shortest[t[j]] = std::min(shortest[t[j]], length);
       }
+    detail::poll_every(k);  // the run's cancellation
+  }
   return shortest;
 }
 
@@ -123,7 +127,8 @@ std::vector<char> stray_vertices(const Domain& domain, const std::vector<Vec3>& 
   const std::size_t n = positions.size();
   std::vector<char> stray(n, 0);
   const detail::NearestNeighbors nearest(positions);
-  tbb::parallel_for(std::size_t(0), n, [&](std::size_t v) {
+  detail::poll();
+  detail::polled_parallel_for(n, [&](std::size_t v) {
     if (!moving[v]) return;
     for (int u : nearest.query(positions[v], 2))
       if (u != static_cast<int>(v) &&
@@ -133,7 +138,7 @@ std::vector<char> stray_vertices(const Domain& domain, const std::vector<Vec3>& 
   // Point location only reads the triangulation (CGAL's walk keeps its
   // random state local), so the vertices are located concurrently.
   located.assign(n, Location());
-  tbb::parallel_for(std::size_t(0), n, [&](std::size_t v) {
+  detail::polled_parallel_for(n, [&](std::size_t v) {
     if (!moving[v] || stray[v]) return;
     located[v] = domain.locate(positions[v], static_cast<int>(v));
     if (located[v].tet < 0) stray[v] = 1;
@@ -157,7 +162,7 @@ std::vector<char> collapsed_vertices(const Domain& moved, const std::vector<char
   const auto& x = moved.vertices();
   const auto& tets = moved.tets();
   std::vector<char> flat(tets.size(), 0);
-  tbb::parallel_for(std::size_t(0), tets.size(), [&](std::size_t t) {
+  detail::polled_parallel_for(tets.size(), [&](std::size_t t) {
     const auto& v = tets[t];
     const Vec3 e1 = x[v[1]] - x[v[0]], e2 = x[v[2]] - x[v[0]], e3 = x[v[3]] - x[v[0]];
     const double l = std::max({e1.norm(), e2.norm(), e3.norm(), (e2 - e1).norm(),
@@ -186,7 +191,9 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
 
   const Eigen::VectorXd x0 = stacked_positions(domain);
   const Eigen::VectorXd half_gradient = energy.A * x0 - energy.b;
+  detail::poll();
   report.energy_before = energy.value(x0);
+  detail::poll();
   Eigen::VectorXd step = minimize(energy, x0, options, report) - x0;
 
   // Guard. The triangulation is rebuilt as a Delaunay one after the move, so
@@ -197,6 +204,7 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
   // must not rise along the remaining step: it is cut to the minimum of E on
   // its line if it would.
   const Eigen::Index n = x0.size() / 3;
+  detail::poll();
   const std::vector<double> shortest = shortest_edges(domain);
   std::vector<char> rejected(n, 0);
   auto send_back = [&](const std::vector<char>& offenders) {
@@ -236,6 +244,7 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
       break;
     }
     if (std::find(moving.begin(), moving.end(), 1) == moving.end()) break;
+    detail::poll();
     Domain moved = domain.moved(positions, carried_values(domain, moving, located));
     detail::poll();
     if (send_back(collapsed_vertices(moved, moving))) continue;

@@ -10,6 +10,7 @@ QuadraticAccumulator::QuadraticAccumulator(const Domain& domain) {
   const int n = static_cast<int>(mesh.vertices.size());
   stars_ = detail::vertex_stars(mesh);
   const std::vector<std::vector<int>> rings = detail::one_rings(mesh, stars_);
+  detail::poll();  // the run's cancellation
   offsets_.assign(n + 1, 0);
   for (int v = 0; v < n; ++v) offsets_[v + 1] = offsets_[v] + static_cast<int>(rings[v].size());
   rows_.resize(offsets_[n]);
@@ -48,6 +49,7 @@ Eigen::SparseMatrix<double> QuadraticAccumulator::matrix() const {
   for (int j = 0; j < n; ++j)
     for (int s = offsets_[j]; s < offsets_[j + 1]; ++s)
       column_size[j] += coupled_index_[s] < 0 ? 1 : 3;
+  detail::poll();  // the run's cancellation
   Eigen::SparseMatrix<double> A(3 * n, 3 * n);
   int* outer = A.outerIndexPtr();
   outer[0] = 0;
@@ -56,7 +58,7 @@ Eigen::SparseMatrix<double> QuadraticAccumulator::matrix() const {
   A.resizeNonZeros(outer[3 * n]);
   int* inner = A.innerIndexPtr();
   double* values = A.valuePtr();
-  tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
+  detail::polled_parallel_ranges(n, [&](const tbb::blocked_range<int>& r) {
     for (int j = r.begin(); j < r.end(); ++j)
       for (int k = 0; k < 3; ++k) {
         int out = outer[3 * j + k];

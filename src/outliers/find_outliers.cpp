@@ -57,7 +57,7 @@ std::vector<char> find_outliers(const std::vector<Vec3>& points, const OutlierOp
     for (; found < k; ++found) neighbours[i * k + found] = static_cast<int>(i);
   });
   const double typical = median(spacing);
-  tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+  detail::polled_parallel_for(n, [&](std::size_t i) {
     std::vector<double> around(k);
     for (std::size_t j = 0; j < k; ++j) around[j] = spacing[neighbours[i * k + j]];
     const double local = std::min(median(std::move(around)), 2 * typical);

@@ -119,6 +119,7 @@ RefinementStats refine(Domain& domain, const SizingField& sizing, std::mt19937_6
   RefinementStats stats;
   const std::vector<Isofacet> facets = isofacets(domain.mesh(), domain.f());
   const std::vector<double> targets = sizing.target_areas(domain, facets);
+  detail::poll();  // the run's cancellation
   stats.crossing_tets = static_cast<int>(facets.size());
   stats.before = isofacet_area_stats(facets, targets);
 
@@ -128,6 +129,7 @@ RefinementStats refine(Domain& domain, const SizingField& sizing, std::mt19937_6
     // One draw per crossing tet, used or not, so that the sequence of draws
     // does not depend on which tets reach rule 5.
     const double draw = uniform(rng);
+    detail::poll_every(i);
     const auto& tet = domain.tets()[facets[i].tet];
     switch (refinement_rule(facets[i], facets[i].area / targets[i], draw)) {
       case 3:
@@ -142,7 +144,7 @@ RefinementStats refine(Domain& domain, const SizingField& sizing, std::mt19937_6
         ++stats.left;
     }
   }
-  detail::poll();  // the run's cancellation
+  detail::poll();
   stats.inserted_points = static_cast<int>(domain.insert(points.points()).size());
 
   const std::vector<Isofacet> after = isofacets(domain.mesh(), domain.f());

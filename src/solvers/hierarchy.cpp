@@ -46,8 +46,18 @@ SparseMatrix subset_prolongation(const std::vector<Vec3>& vertices, const std::v
   items.reserve(coarse.size());
   for (std::size_t c = 0; c < coarse.size(); ++c)
     items.emplace_back(to_point(vertices[coarse[c]]), static_cast<int>(c));
+  // CGAL's range insertion written out (the same spatial order, each point
+  // located from the last) so that the run's cancellation is polled in between.
+  CGAL::spatial_sort(
+      items.begin(), items.end(),
+      CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::First_of_pair_property_map<Item>>());
   Delaunay dt;
-  dt.insert(items.begin(), items.end());
+  Delaunay::Vertex_handle last;
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    if (k % 4096 == 4095) poll();
+    last = dt.insert(items[k].first, last);
+    last->info() = items[k].second;
+  }
   if (dt.dimension() < 3 || dt.number_of_vertices() != coarse.size())
     throw std::invalid_argument("subset_prolongation: the coarse vertices are degenerate");
 
@@ -75,26 +85,29 @@ SparseMatrix subset_prolongation(const std::vector<Vec3>& vertices, const std::v
       CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::First_of_pair_property_map<Item>>;
   CGAL::spatial_sort(queries.begin(), queries.end(), Traits());
   const std::size_t chunks = (queries.size() + kChunk - 1) / kChunk;
-  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t k) {
-    Delaunay::Cell_handle hint;
-    for (std::size_t q = k * kChunk; q < std::min(queries.size(), (k + 1) * kChunk); ++q) {
-      const auto& [point, r] = queries[q];
-      Delaunay::Locate_type lt;
-      int li, lj;
-      const Delaunay::Cell_handle c = dt.locate(point, lt, li, lj, hint);
-      if (lt == Delaunay::OUTSIDE_CONVEX_HULL || dt.is_infinite(c)) {
-        columns[r][0] = dt.nearest_vertex(point, c)->info();
-        weights[r][0] = 1;
-        continue;
-      }
-      hint = c;
-      const std::array<double, 4> w = barycentric(c, to_vec(point));
-      for (int i = 0; i < 4; ++i) {
-        columns[r][i] = w[i] > 0 ? c->vertex(i)->info() : -1;
-        weights[r][i] = w[i];
-      }
-    }
-  });
+  polled_parallel_for(
+      chunks,
+      [&](std::size_t k) {
+        Delaunay::Cell_handle hint;
+        for (std::size_t q = k * kChunk; q < std::min(queries.size(), (k + 1) * kChunk); ++q) {
+          const auto& [point, r] = queries[q];
+          Delaunay::Locate_type lt;
+          int li, lj;
+          const Delaunay::Cell_handle c = dt.locate(point, lt, li, lj, hint);
+          if (lt == Delaunay::OUTSIDE_CONVEX_HULL || dt.is_infinite(c)) {
+            columns[r][0] = dt.nearest_vertex(point, c)->info();
+            weights[r][0] = 1;
+            continue;
+          }
+          hint = c;
+          const std::array<double, 4> w = barycentric(c, to_vec(point));
+          for (int i = 0; i < 4; ++i) {
+            columns[r][i] = w[i] > 0 ? c->vertex(i)->info() : -1;
+            weights[r][i] = w[i];
+          }
+        }
+      },
+      std::size_t(64));
 
   // Assembled by rows, then stored by columns.
   Eigen::SparseMatrix<double, Eigen::RowMajor> rows(static_cast<Eigen::Index>(n),
@@ -117,6 +130,7 @@ SparseMatrix subset_prolongation(const std::vector<Vec3>& vertices, const std::v
         inner[out] = columns[r][i];
         value[out++] = weights[r][i];
       }
+    poll_every(r);
   }
   outer[n] = out;
   return SparseMatrix(rows);
@@ -184,12 +198,12 @@ const std::vector<SparseMatrix>& ProgressiveHierarchy::levels_for(
     if (k > 0)
       for (std::size_t m = 0; m + 1 < chain_.size(); ++m)
         if (chain_[m] == chain[k] && chain_[m + 1] == chain[k + 1]) {
-          prolongations[k] = std::move(prolongations_[m]);
+          prolongations[k].swap(prolongations_[m]);  // Eigen 3.4's SparseMatrix has no move
           kept = true;
           break;
         }
     if (!kept) {
-      prolongations[k] = subset_prolongation(vertices, chain[k + 1], chain[k]);
+      subset_prolongation(vertices, chain[k + 1], chain[k]).swap(prolongations[k]);
       poll();
     }
   }

@@ -46,6 +46,7 @@ double largest_eigenvalue(const SparseMatrix& A, const Eigen::VectorXd& inverse_
     beta.push_back(b);
     previous = v;
     v = w / b;
+    poll();  // the run's cancellation: a product takes a fraction of a second at 1M
   }
   const int m = static_cast<int>(alpha.size());
   Eigen::MatrixXd T = Eigen::MatrixXd::Zero(m, m);
@@ -100,6 +101,7 @@ struct Multigrid::Impl {
       }
     });
     for (int k = 1; k < options.smoothing_degree; ++k) {
+      poll();  // the run's cancellation, inside a CG iteration (seconds at 1M)
       symmetric_product(*l.A, d, q);
       const double c1 = (2.0 * k - 1) / (2.0 * k + 3), c2 = (8.0 * k + 4) / (2.0 * k + 3) / rho;
       for_blocks(n, [&](Eigen::Index begin, Eigen::Index end) {
@@ -152,13 +154,14 @@ void Multigrid::setup(const SparseMatrix& A, const std::vector<SparseMatrix>& pr
     if (P.rows() != fine.A->rows())
       throw std::invalid_argument("multigrid: a prolongation does not match its fine level");
     if (fine.A->rows() <= static_cast<Eigen::Index>(options.coarsest_size)) break;
-    Impl::Level coarse;
+    // Built in place (the levels are reserved, so `fine` stays valid), and
+    // swapped in: Eigen 3.4's SparseMatrix has no move, = and push_back copy.
+    Impl::Level& coarse = d.levels.emplace_back();
     coarse.P = &P;
-    coarse.R = compressed_transpose(*coarse.P);
-    coarse.galerkin = galerkin_product(*coarse.P, *fine.A);
+    compressed_transpose(P).swap(coarse.R);
+    galerkin_product(P, *fine.A).swap(coarse.galerkin);
+    coarse.A = &coarse.galerkin;
     poll();
-    d.levels.push_back(std::move(coarse));
-    d.levels.back().A = &d.levels.back().galerkin;
   }
   for (std::size_t k = 0; k + 1 < d.levels.size(); ++k) {
     Impl::Level& l = d.levels[k];

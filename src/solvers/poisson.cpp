@@ -42,9 +42,9 @@ class PoissonSolver final : public ImplicitSolver {
     const Eigen::VectorXd b = gradient_transpose_times(p.mesh, weighted);
 
     // Eq. (14) in units of l: [L + alpha l / |X| Phi^T Phi] F = Div N~.
-    const SparseMatrix L = cotangent_laplacian(p.mesh);
+    SparseMatrix A = cotangent_laplacian(p.mesh);
+    const double l00 = A.coeff(0, 0);
     poll();
-    SparseMatrix A = L;
     if (options_.alpha > 0) {
       const double w = options_.alpha * p.length / static_cast<double>(p.num_points);
       const SparseMatrix values = gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
@@ -53,7 +53,7 @@ class PoissonSolver final : public ImplicitSolver {
       // The original Poisson equation: f is defined up to a constant, fixed
       // by the penalty L_00 f_0^2, which does not change the minimizers of
       // Eq. (13) other than selecting f_0 = 0.
-      A.coeffRef(0, 0) += L.coeff(0, 0);
+      A.coeffRef(0, 0) += l00;
     }
     stats_.assembly_seconds = seconds_since(start);
 

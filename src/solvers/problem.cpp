@@ -25,7 +25,7 @@ Problem make_problem(const Domain& domain, const PointSet& points, const std::st
     throw InputError(solver + ": " + e.what());
   }
   poll();
-  p.Phi = sampling_matrix(p.mesh, p.locations);
+  sampling_matrix(p.mesh, p.locations).swap(p.Phi);  // Eigen 3.4's SparseMatrix: = would copy
   poll();
   Eigen::AlignedBox3d box;
   for (const Vec3& x : points.points) box.extend(x);

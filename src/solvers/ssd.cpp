@@ -41,6 +41,7 @@ LinearSystem ssd_system(const Problem& p, const SsdOptions& options) {
     const int t = p.locations[i].tet;
     count[t] += Eigen::Matrix3d::Identity();
     normal_sum[t] += p.normals[i];
+    poll_every(i);
   }
   const double beta = options.beta / nx;
   const Eigen::VectorXd b = beta * gradient_transpose_times(p.mesh, normal_sum);
@@ -55,15 +56,20 @@ LinearSystem ssd_system(const Problem& p, const SsdOptions& options) {
   poll();
   const double alpha = options.alpha / (p.length * p.length * nx);
   if (options.gamma > 0) {
-    A = hessian_energy(p.mesh);
+    hessian_energy(p.mesh).swap(A);  // Eigen 3.4's SparseMatrix has no move: = would copy
     poll();
     A *= options.gamma * p.length * p.length / tet_volumes(p.mesh).sum();  // H^T M~_V^-1 H
+    poll();
     add_to(A, stiffness, beta);
+    poll();
   } else {
     A = beta * stiffness;
   }
   add_to(A, values, alpha);
-  return {std::move(A), std::move(b)};
+  LinearSystem system;
+  system.A.swap(A);
+  system.b = std::move(b);
+  return system;
 }
 
 class SsdSolver final : public ImplicitSolver {
