@@ -26,6 +26,9 @@ namespace pdd::detail {
 // Geometry of one tet: its volume and the (constant) gradients of its four
 // barycentric coordinates.
 struct TetGradients {
+  // Not zeroed: a vector of a million tets' is filled in parallel, and
+  // zeroing it first took a serial second (value-initialization of an aggregate).
+  TetGradients() {}
   double volume;
   Vec3 grad[4];
 };

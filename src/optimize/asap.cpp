@@ -7,7 +7,9 @@
 #include <Eigen/SVD>
 #include <tbb/parallel_for.h>
 
+#include <array>
 #include <cmath>
+#include <memory>
 
 namespace pdd::optimize_detail {
 namespace {
@@ -84,7 +86,8 @@ void add_asap_term(const Domain& domain, double weight_scale, QuadraticAccumulat
   detail::polled_parallel_for(m, [&](std::size_t t) { volume[t] = signed_volume(corners(t)); });
 
   // vol_bar(t): the mean of the volumes of t and of the tets adjacent to it.
-  std::vector<std::array<Vec3, 4>> targets(m);
+  // new[] leaves them unzeroed (a vector would zero a GB serially at 1M points).
+  const std::unique_ptr<std::array<Vec3, 4>[]> targets(new std::array<Vec3, 4>[m]);
   detail::polled_parallel_for(m, [&](std::size_t t) {
     double sum = volume[t];
     int count = 1;
