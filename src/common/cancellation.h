@@ -40,9 +40,10 @@ class PollScope {
 // passed; call only where an exception may leave (not inside a parallel loop).
 void poll();
 
-// For a serial loop over a million items: poll() once every 65536 of them.
-inline void poll_every(std::size_t i) {
-  if ((i & 0xFFFF) == 0xFFFF) poll();
+// For a serial loop over a million items: poll() once every `period` of them
+// (a power of two; fewer where each item costs microseconds).
+inline void poll_every(std::size_t i, std::size_t period = std::size_t(1) << 16) {
+  if ((i & (period - 1)) == period - 1) poll();
 }
 
 // body(range) over [0, n) in parallel (tbb::blocked_range<Index>), a slice of

@@ -93,14 +93,35 @@ SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values)
   return result;
 }
 
-// A compressed copy of a column-major matrix and its three arrays.
+// The three arrays of a column-major matrix: read in place when it is
+// compressed, from a compressed copy otherwise (Eigen 3.4's SparseMatrix has
+// no move: taking it by value copied it twice).
 struct Columns {
-  SparseMatrix m;
+  struct Transposed {};
+  SparseMatrix own;
   const int* outer;
   const int* inner;
   const double* value;
-  explicit Columns(SparseMatrix a) : m(std::move(a)) {
-    m.makeCompressed();
+  explicit Columns(const SparseMatrix& a) {
+    if (a.isCompressed()) {
+      point_at(a);
+    } else {
+      own = a;
+      own.makeCompressed();
+      point_at(own);
+    }
+  }
+  // The columns of a's transpose, i.e. its rows.
+  Columns(const SparseMatrix& a, Transposed) {
+    SparseMatrix(a.transpose()).swap(own);
+    own.makeCompressed();
+    point_at(own);
+  }
+  Columns(const Columns&) = delete;
+  Columns& operator=(const Columns&) = delete;
+
+ private:
+  void point_at(const SparseMatrix& m) {
     outer = m.outerIndexPtr();
     inner = m.innerIndexPtr();
     value = m.valuePtr();
@@ -112,7 +133,7 @@ struct Columns {
 SparseMatrix gram_matrix(const SparseMatrix& A, const Eigen::VectorXd& d) {
   if (d.size() != A.rows()) throw std::invalid_argument("gram_matrix: d must have A.rows() entries");
   const Columns a(A);
-  const Columns t(A.transpose());  // column k of t is row k of A
+  const Columns t(A, Columns::Transposed{});  // column k of t is row k of A
   // Column j of A^T D A = sum over rows k of A in column j of d_k A_kj (row k of A)^T.
   return accumulate_columns(
       static_cast<int>(A.cols()),
@@ -147,7 +168,7 @@ SparseMatrix galerkin_product(const SparseMatrix& P, const SparseMatrix& A) {
   if (A.rows() != A.cols() || P.rows() != A.rows())
     throw std::invalid_argument("galerkin_product: P must have as many rows as A");
   const Columns p(P), a(A);
-  const Columns r(P.transpose());  // column i of r is row i of P
+  const Columns r(P, Columns::Transposed{});  // column i of r is row i of P
   // Column j = sum over k in column j of P of P_kj sum over i of A_ik (row i of P)^T.
   auto for_each_term = [&](int j, auto&& term) {
     for (int pk = p.outer[j]; pk < p.outer[j + 1]; ++pk)

@@ -129,7 +129,7 @@ RefinementStats refine(Domain& domain, const SizingField& sizing, std::mt19937_6
     // One draw per crossing tet, used or not, so that the sequence of draws
     // does not depend on which tets reach rule 5.
     const double draw = uniform(rng);
-    detail::poll_every(i);
+    detail::poll_every(i, 4096);  // up to 16 set insertions per tet
     const auto& tet = domain.tets()[facets[i].tet];
     switch (refinement_rule(facets[i], facets[i].area / targets[i], draw)) {
       case 3:
