@@ -52,11 +52,21 @@ inline void transposed_product(const Eigen::SparseMatrix<double>& M, const Eigen
   const int* outer = M.outerIndexPtr();
   const int* inner = M.innerIndexPtr();
   const double* value = M.valuePtr();
+  // Four partial sums per column: one sum is a chain of dependent additions
+  // that stalls on their latency (the two-ring SSD matrix has 75 per column).
   for_blocks(M.cols(), [&](Eigen::Index begin, Eigen::Index end) {
     for (Eigen::Index j = begin; j < end; ++j) {
-      double s = 0;
-      for (int p = outer[j]; p < outer[j + 1]; ++p) s += value[p] * x[inner[p]];
-      y[j] = s;
+      double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+      int p = outer[j];
+      const int last = outer[j + 1];
+      for (; p + 4 <= last; p += 4) {
+        s0 += value[p] * x[inner[p]];
+        s1 += value[p + 1] * x[inner[p + 1]];
+        s2 += value[p + 2] * x[inner[p + 2]];
+        s3 += value[p + 3] * x[inner[p + 3]];
+      }
+      for (; p < last; ++p) s0 += value[p] * x[inner[p]];
+      y[j] = (s0 + s1) + (s2 + s3);
     }
   });
 }
