@@ -5,7 +5,7 @@
 // seconds, and peak memory.
 //
 //   solvers_bench [--sizes 50000,200000,1000000] [--out bench/results/solvers.txt]
-//                 [--direct-max 450000] [--tolerance 1e-6]
+//                 [--direct-max 450000] [--tolerance 1e-6] [--routes cg+multigrid,cholmod]
 //
 // Domains: an ellipsoid's samples (1, 0.7, 0.5; exact normals, one sample per
 // 4 vertices) in Domain::initial, refined three times by a factor of 3 (two
@@ -310,6 +310,7 @@ int main(int argc, char** argv) {
   std::string out_path = "bench/results/solvers.txt";
   std::size_t direct_max = 450000;
   double tolerance = 1e-6;
+  std::string only;  // the routes to run, comma-separated between commas; all when empty
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--sizes")) {
       sizes.clear();
@@ -322,6 +323,8 @@ int main(int argc, char** argv) {
       direct_max = std::stoul(argv[i + 1]);
     } else if (!std::strcmp(argv[i], "--tolerance")) {
       tolerance = std::stod(argv[i + 1]);
+    } else if (!std::strcmp(argv[i], "--routes")) {
+      only = "," + std::string(argv[i + 1]) + ",";
     }
   }
   std::vector<Route> routes = {
@@ -362,6 +365,7 @@ int main(int argc, char** argv) {
     std::cout << head.str() << std::flush;
     report << head.str();
     for (const Route& r : routes) {
+      if (!only.empty() && only.find("," + std::string(r.name) + ",") == std::string::npos) continue;
       std::string line;
       if (!std::strcmp(r.name, "cholmod") && domains.back().num_vertices() > direct_max)
         line = "cholmod       skipped: over --direct-max";
