@@ -427,6 +427,24 @@ TEST_F(IoTest, PlyLinesThatDoNotParseAreNamed) {
     write_file("a.ply", typed + "0 0 0 1 0 0\n1 0 0 " + values + "\n0 1 0 1 0 0\n0 0 1 1 0 0\n");
     expect_input_error([&] { read_points(path("a.ply")); }, {path("a.ply"), "line 12", message});
   }
+  // Lists too: their counts and items (found by fuzz/ply_fuzzer.cpp: an index of 1.4e113
+  // in an int list was cast to an integer, undefined behaviour).
+  const std::string faces =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n";
+  for (const auto& [face, message] : std::vector<std::pair<std::string, std::string>>{
+           {"3 0 1 144444444444444444444444", "are ints, which cannot hold '144444444444444444444444'"},
+           {"3 0 1 2.5", "are ints, which cannot hold '2.5'"},
+           {"300 0 1 2", "is a uchar, which cannot hold '300'"}}) {
+    write_file("f.ply", faces + face + "\n");
+    expect_input_error([&] { read_mesh(path("f.ply")); }, {path("f.ply"), "line 13", message});
+  }
+  std::string floats = faces;
+  floats.replace(floats.find("uchar int"), 9, "uchar float");
+  write_file("f.ply", floats + "3 0 1 1e30\n");
+  expect_input_error([&] { read_mesh(path("f.ply")); },
+                     {path("f.ply"), "face 1 refers to vertex 1e+30, which cannot exist"});
   // A text float is read as the float it declares, so that it is written back the same.
   write_file("a.ply", typed + "0 0 0 1 0 0.1\n1 0 0 1 0 0\n0 1 0 1 0 0\n0 0 1 1 0 0\n");
   EXPECT_EQ(read_points(path("a.ply")).attributes[2].values[0], static_cast<double>(0.1f));

@@ -344,6 +344,10 @@ void add_face(const std::string& path, std::size_t line, std::uint64_t face,
     if (indices[k] != std::floor(indices[k])) {
       fail(path, where + " has a vertex index that is not an integer");
     }
+    // A float list can hold any index; past int64 there is no such vertex.
+    if (!(std::abs(indices[k]) < 0x1p63))
+      fail(path,
+           where + " refers to vertex " + format_double(indices[k]) + ", which cannot exist");
     f[k] = static_cast<std::int64_t>(indices[k]);
   }
   mesh.faces.push_back(f);
@@ -403,7 +407,13 @@ void read_ascii_body(const std::string& path, const std::string& data, const Hea
                              type_name(property.type) + ", which cannot hold " + quote(token));
           continue;
         }
-        const std::int64_t count = integer_at(tokens[t++], path, line);
+        const std::string_view count_token = tokens[t++];
+        const std::int64_t count = integer_at(count_token, path, line);
+        if (!holds(property.count_type, static_cast<double>(count)))
+          fail_at_line(path, line,
+                       record + ": the count of list " + quote(property.name) + " is a " +
+                           type_name(property.count_type) + ", which cannot hold " +
+                           quote(count_token));
         if (count < 0 || static_cast<std::uint64_t>(count) > tokens.size() - t) {
           fail_at_line(path, line,
                        record + " has a list of " + std::to_string(count) +
@@ -412,7 +422,12 @@ void read_ascii_body(const std::string& path, const std::string& data, const Hea
         const bool keep = is_face && p == face->indices;
         if (keep) indices.clear();
         for (std::int64_t k = 0; k < count; ++k) {
-          const double item = double_at(tokens[t++], path, line);
+          const std::string_view token = tokens[t++];
+          const double item = double_at(token, path, line);
+          if (!holds(property.type, item))
+            fail_at_line(path, line,
+                         record + ": the items of list " + quote(property.name) + " are " +
+                             type_name(property.type) + "s, which cannot hold " + quote(token));
           if (keep) indices.push_back(item);
         }
       }
