@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 
 #include "support/shapes.h"
@@ -58,6 +59,62 @@ TEST(Trim, AHemisphereSampledWithoutItsBaseGivesOneOpenPieceCutAtTheRim) {
             << after.fraction_below_20 << "\n";
   EXPECT_GT(after.mean_min_angle, before.mean_min_angle - 2);
   EXPECT_LT(after.fraction_below_20, 0.01);
+}
+
+// The smallest angle (degrees) of each triangle with a boundary edge: the cut's rim.
+std::vector<double> rim_min_angles(const TriangleMesh& mesh) {
+  std::map<std::pair<int, int>, int> uses;
+  for (const auto& f : mesh.faces)
+    for (int i = 0; i < 3; ++i) ++uses[std::minmax(f[i], f[(i + 1) % 3])];
+  std::vector<double> angles;
+  for (const auto& f : mesh.faces) {
+    bool rim = false;
+    for (int i = 0; i < 3; ++i) rim = rim || uses[std::minmax(f[i], f[(i + 1) % 3])] == 1;
+    if (!rim) continue;
+    double smallest = 180;
+    for (int i = 0; i < 3; ++i) {
+      const Vec3 u = mesh.vertices[f[(i + 1) % 3]] - mesh.vertices[f[i]];
+      const Vec3 v = mesh.vertices[f[(i + 2) % 3]] - mesh.vertices[f[i]];
+      smallest = std::min(smallest, std::atan2(u.cross(v).norm(), u.dot(v)) * 180 / M_PI);
+    }
+    angles.push_back(smallest);
+  }
+  return angles;
+}
+
+// The triangles at the cut are as well shaped as the rest: a line through
+// triangles leaves short edges and flat corners where it passes near a vertex,
+// which the rim's remeshing removes. Cuts at several heights, so that the line
+// meets the icosphere's vertices at every offset.
+TEST(Trim, TheTrianglesAtTheCutKeepTheMeshQuality) {
+  const TriangleMesh sphere = test::sphere_mesh(5);
+  const TriangleQuality whole = triangle_quality(sphere);
+  for (const double level : {-0.3, -0.1, 0.05, 0.2, 0.45}) {
+    const std::vector<Vec3> samples =
+        sphere_samples(6000, [&](const Vec3& p) { return p.z() > level; });
+    TriangleMesh mesh = sphere;
+    TrimOptions options;
+    options.distance = 2;
+    trim_to_samples(mesh, samples, options);
+    const std::vector<double> rim = rim_min_angles(mesh);
+    ASSERT_GT(rim.size(), 50u) << level;
+    double mean = 0;
+    int below_20 = 0;
+    for (double a : rim) {
+      mean += a / rim.size();
+      below_20 += a < 20;
+    }
+    std::cout << "cut at z = " << level << ": " << rim.size() << " rim triangles, mean min angle "
+              << mean << ", " << below_20 << " under 20 degrees (whole sphere: "
+              << whole.mean_min_angle << ")\n";
+    EXPECT_GT(mean, 38) << level;
+    EXPECT_LE(below_20, 0.02 * rim.size()) << level;
+    EXPECT_TRUE(surface_topology(mesh).manifold) << level;
+    EXPECT_EQ(boundary_loops(mesh), 1) << level;
+    double off = 0;
+    for (const Vec3& v : mesh.vertices) off = std::max(off, std::abs(v.norm() - 1));
+    EXPECT_LT(off, 0.1 * 0.03) << level;  // a tenth of the edge: on the sphere to second order
+  }
 }
 
 TEST(Trim, ASmallHoleStaysClosedAndALargeOneOpens) {

@@ -20,6 +20,7 @@
 #include "common/nearest_neighbors.h"
 #include "common/union_find.h"
 #include "contour/components.h"
+#include "contour/rim.h"
 
 namespace pdd {
 
@@ -206,6 +207,11 @@ TrimReport trim_to_samples(TriangleMesh& mesh, const std::vector<Vec3>& samples,
   });
   for (std::size_t e = 0; e < edges.size(); ++e)
     for (int v : {edges[e].first, edges[e].second}) g[v] = std::max(g[v], at_midpoint[e]);
+  std::vector<double> lengths(edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    lengths[e] = (mesh.vertices[edges[e].first] - mesh.vertices[edges[e].second]).norm();
+  std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+  const double median_edge = lengths.empty() ? 0 : lengths[lengths.size() / 2];
   for (int round = 0; round < 2; ++round) {
     std::vector<double> smoothed(n);
     for (std::size_t v = 0; v < n; ++v) {
@@ -333,6 +339,7 @@ TrimReport trim_to_samples(TriangleMesh& mesh, const std::vector<Vec3>& samples,
     report.islands = detail::remove_marked(cut, c, drop);
   }
   smooth_boundary(cut);
+  detail::remesh_rim(cut, boundary_edges(cut), median_edge);
   mesh = std::move(cut);
   report.area_removed = area_before > 0 ? 1 - area(mesh) / area_before : 0;
   report.boundary_loops = boundary_loops(mesh);
