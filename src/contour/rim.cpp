@@ -6,8 +6,9 @@
 // Written here because the mesh is a plain face list: CGAL's remeshing
 // (Polygon_mesh_processing::isotropic_remeshing) would convert the whole mesh
 // to a Surface_mesh and back, and targets edge lengths, not the rim's angles.
-#include <Eigen/Geometry>
+#include "contour/rim.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -15,19 +16,18 @@
 #include <vector>
 
 #include "contour/components.h"
-#include "contour/rim.h"
 
 namespace pdd::detail {
 
-namespace {
-
-double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+double min_angle_degrees(const Vec3& a, const Vec3& b, const Vec3& c) {
   auto angle = [](const Vec3& p, const Vec3& q, const Vec3& r) {
     const Vec3 u = q - p, v = r - p;
     return std::atan2(u.cross(v).norm(), u.dot(v));
   };
-  return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
+  return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)}) * (180 / M_PI);
 }
+
+namespace {
 
 void remove(std::vector<int>& list, int value) {
   list.erase(std::remove(list.begin(), list.end(), value), list.end());
@@ -62,8 +62,8 @@ class Surface {
     return f[face][0] == v || f[face][1] == v || f[face][2] == v;
   }
   double worst(const std::vector<int>& faces) const {
-    double w = M_PI;
-    for (int i : faces) w = std::min(w, min_angle(x[f[i][0]], x[f[i][1]], x[f[i][2]]));
+    double w = 180;
+    for (int i : faces) w = std::min(w, min_angle_degrees(x[f[i][0]], x[f[i][1]], x[f[i][2]]));
     return w;
   }
 
@@ -80,7 +80,7 @@ class Surface {
     std::sort(around.begin(), around.end());
     around.erase(std::unique(around.begin(), around.end()), around.end());
     const double before = worst(around);
-    double after = M_PI;
+    double after = 180;
     for (int i : around) {
       if (contains(i, u) && contains(i, k)) continue;
       std::array<Vec3, 3> p;
@@ -88,7 +88,7 @@ class Surface {
       const Vec3 was = normal(x[f[i][0]], x[f[i][1]], x[f[i][2]]);
       const Vec3 now = normal(p[0], p[1], p[2]);
       if (now.dot(was) <= 0.5 * now.norm() * was.norm()) return false;
-      after = std::min(after, min_angle(p[0], p[1], p[2]));
+      after = std::min(after, min_angle_degrees(p[0], p[1], p[2]));
     }
     if (after <= before) return false;
     for (int i : shared) {
@@ -103,9 +103,9 @@ class Surface {
       incident[k].push_back(i);
     }
     incident[u].clear();
-    incident[k].erase(std::remove_if(incident[k].begin(), incident[k].end(),
-                                     [&](int i) { return f[i][0] < 0; }),
-                      incident[k].end());
+    incident[k].erase(
+        std::remove_if(incident[k].begin(), incident[k].end(), [&](int i) { return f[i][0] < 0; }),
+        incident[k].end());
     std::sort(incident[k].begin(), incident[k].end());
     incident[k].erase(std::unique(incident[k].begin(), incident[k].end()), incident[k].end());
     x[k] = to;
@@ -142,7 +142,8 @@ class Surface {
     const Vec3 n = n0 + n1;
     if (m0.dot(n) <= 0 || m1.dot(n) <= 0) return false;
     const double before = worst(two);
-    const double after = std::min(min_angle(x[p], x[d], x[c]), min_angle(x[q], x[c], x[d]));
+    const double after =
+        std::min(min_angle_degrees(x[p], x[d], x[c]), min_angle_degrees(x[q], x[c], x[d]));
     if (after <= before) return false;
     f[two[0]] = g0;
     f[two[1]] = g1;
@@ -156,14 +157,14 @@ class Surface {
   // Moves v to `to` where that turns no face over and raises its smallest angle.
   bool move(int v, const Vec3& to) {
     const double before = worst(incident[v]);
-    double after = M_PI;
+    double after = 180;
     for (int i : incident[v]) {
       std::array<Vec3, 3> p;
       for (int j = 0; j < 3; ++j) p[j] = f[i][j] == v ? to : x[f[i][j]];
       const Vec3 was = normal(x[f[i][0]], x[f[i][1]], x[f[i][2]]);
       const Vec3 now = normal(p[0], p[1], p[2]);
       if (now.dot(was) <= 0.5 * now.norm() * was.norm()) return false;
-      after = std::min(after, min_angle(p[0], p[1], p[2]));
+      after = std::min(after, min_angle_degrees(p[0], p[1], p[2]));
     }
     if (after <= before) return false;
     x[v] = to;
@@ -212,7 +213,7 @@ void remesh_rim(TriangleMesh& mesh, const std::vector<std::pair<int, int>>& boun
           const int a = t[i], b = t[(i + 1) % 3], c = t[(i + 2) % 3];
           if (rim[c] || s.faces_of_edge(a, b).size() != 1) continue;
           const Vec3 u = s.x[a] - s.x[c], w = s.x[b] - s.x[c];
-          if (std::atan2(u.cross(w).norm(), u.dot(w)) > 2 * M_PI / 3) {
+          if (std::atan2(u.cross(w).norm(), u.dot(w)) > 2 * M_PI / 3) {  // 120 degrees
             s.remove_face(face);
             rim[c] = 1;
             break;

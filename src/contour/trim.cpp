@@ -83,14 +83,6 @@ double area(const TriangleMesh& mesh) {
 
 enum State : char { kIn = 0, kOn = 1, kOut = 2 };
 
-double min_angle_degrees(const Vec3& a, const Vec3& b, const Vec3& c) {
-  auto angle = [](const Vec3& p, const Vec3& q, const Vec3& r) {
-    const Vec3 u = q - p, v = r - p;
-    return std::atan2(u.cross(v).norm(), u.dot(v));
-  };
-  return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)}) * 180 / M_PI;
-}
-
 // The cut's rim made smooth: ears (triangles with two boundary edges, a
 // zigzag of the rim) whose smallest angle is under 30 degrees go, then each
 // rim vertex moves halfway to the midpoint of its two rim neighbours (twice),
@@ -126,9 +118,8 @@ void smooth_boundary(TriangleMesh& mesh) {
     for (const auto& f : mesh.faces) {
       int open = 0;
       for (int i = 0; i < 3; ++i) open += on_rim(f[i], f[(i + 1) % 3]);
-      if (open == 2 &&
-          min_angle_degrees(mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]]) < 30)
-        continue;
+      const auto& x = mesh.vertices;
+      if (open == 2 && detail::min_angle_degrees(x[f[0]], x[f[1]], x[f[2]]) < 30) continue;
       kept.push_back(f);
     }
     if (kept.size() == mesh.faces.size()) break;
