@@ -190,19 +190,41 @@ TEST_F(FemTest, GramMatrixMatchesEigensProduct) {
       ASSERT_LT(mine.innerIndexPtr()[p - 1], mine.innerIndexPtr()[p]);
 }
 
-TEST_F(FemTest, HessianEnergyIsHTransposeMassInverseH) {
-  const SparseMatrix H = hessian_matrix(mesh);
-  const Eigen::VectorXd mass = vertex_masses(mesh);
+// H^T M^-1 H, the squared Hessian energy by its definition.
+SparseMatrix hessian_energy_by_definition(const TetMesh& m) {
+  const SparseMatrix H = hessian_matrix(m);
+  const Eigen::VectorXd mass = vertex_masses(m);
   Eigen::VectorXd d(H.rows());
   for (Eigen::Index i = 0; i < d.size(); ++i) d[i] = 1.0 / mass[i % mass.size()];
-  const SparseMatrix expected = gram_matrix(H, d);
+  return gram_matrix(H, d);
+}
+
+TEST_F(FemTest, HessianEnergyIsHTransposeMassInverseH) {
+  const SparseMatrix expected = hessian_energy_by_definition(mesh);
   const SparseMatrix energy = hessian_energy(mesh);
+  const Eigen::VectorXd mass = vertex_masses(mesh);
   EXPECT_LT(SparseMatrix(energy - expected).norm(), 1e-12 * expected.norm());
   // It is the squared Hessian: zero for linear functions away from the hull,
   // and f^T E f > 0 for a quadratic.
   Eigen::VectorXd q(mass.size());
   for (Eigen::Index v = 0; v < q.size(); ++v) q[v] = mesh.vertices[v].squaredNorm();
   EXPECT_GT(q.dot(energy * q), 0.0);
+}
+
+// hessian_energy assembles H a slice of columns at a time (32768): on a mesh
+// of several slices, whose vertices are numbered at random, it is still
+// H^T M^-1 H.
+TEST(Fem, HessianEnergyOverSeveralSlicesIsHTransposeMassInverseH) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 40000; ++i) points.emplace_back(u(rng), u(rng), u(rng));
+  const TetMesh big = Domain(points).mesh();
+  ASSERT_GT(big.vertices.size(), 32768u);
+  const SparseMatrix expected = hessian_energy_by_definition(big);
+  const SparseMatrix energy = hessian_energy(big);
+  EXPECT_EQ(energy.nonZeros(), expected.nonZeros());
+  EXPECT_LT(SparseMatrix(energy - expected).norm(), 1e-12 * expected.norm());
 }
 
 TEST_F(FemTest, SamplingMatrixInterpolatesLinearFunctionsExactly) {

@@ -16,6 +16,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -63,12 +65,45 @@ inline std::vector<TetGradients> all_tet_gradients(const TetMesh& mesh) {
   return g;
 }
 
+// Eq. (11)'s contribution of tet t (gradients g) to column jl of the Hessian:
+// out[9 i + 3a + b] = vol_t d_b(phi_i) d_a(phi_jl) for its local vertices i.
+inline void hessian_column(const TetGradients& g, int jl, double* out) {
+  for (int i = 0; i < 4; ++i)
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) out[i * 9 + 3 * a + b] = g.volume * g.grad[i][b] * g.grad[jl][a];
+}
+
 // Assembles a (Blocks * |V|) x |V| matrix whose column j is
 //   sum over tets t incident to j of contributions to rows b * |V| + v
 //   (or v * Blocks + b when Interleaved),
 // for every vertex v of t and block b < Blocks. `column(t, jl, out)` fills
 // out[i * Blocks + b] with the contribution of tet t, local column jl, to
 // local row i (vertex tet[i]) in block b.
+// Position of (ring vertex k, block b) in a column of m ring vertices, rows sorted.
+template <int Blocks, bool Interleaved>
+inline int block_slot(int m, int k, int b) {
+  return Interleaved ? k * Blocks + b : b * m + k;
+}
+
+// The values of column j (m ring vertices, `position` of each in the ring),
+// summed over the tets around j in increasing order; `local` holds 4 * Blocks.
+template <int Blocks, bool Interleaved, class ColumnFn>
+void assemble_column(const TetMesh& mesh, const VertexStars& stars,
+                     const std::vector<int>& position, int j, int m, ColumnFn& column,
+                     double* local, double* vals) {
+  std::fill(vals, vals + static_cast<std::ptrdiff_t>(Blocks) * m, 0.0);
+  for (int s = stars.begin(j); s < stars.end(j); ++s) {
+    const int t = stars.tets[s];
+    const auto& tet = mesh.tets[t];
+    column(t, local_index(tet, j), local);
+    for (int i = 0; i < 4; ++i) {
+      const int k = position[tet[i]];
+      for (int b = 0; b < Blocks; ++b)
+        vals[block_slot<Blocks, Interleaved>(m, k, b)] += local[i * Blocks + b];
+    }
+  }
+}
+
 template <int Blocks, bool Interleaved = false, class ColumnFn>
 SparseMatrix assemble_by_columns(const TetMesh& mesh, const VertexStars& stars, ColumnFn column) {
   const int n = static_cast<int>(mesh.vertices.size());
@@ -95,23 +130,12 @@ SparseMatrix assemble_by_columns(const TetMesh& mesh, const VertexStars& stars, 
       const int m = static_cast<int>(ring.size());
       for (int k = 0; k < m; ++k) position[ring[k]] = k;
       int* rows = inner + start[j];
-      double* vals = values + start[j];
-      // Position of (ring vertex k, block b) in the column, rows sorted.
-      auto slot = [m](int k, int b) { return Interleaved ? k * Blocks + b : b * m + k; };
       for (int b = 0; b < Blocks; ++b)
-        for (int k = 0; k < m; ++k) {
-          rows[slot(k, b)] = Interleaved ? ring[k] * Blocks + b : b * n + ring[k];
-          vals[slot(k, b)] = 0.0;
-        }
-      for (int s = stars.begin(j); s < stars.end(j); ++s) {
-        const int t = stars.tets[s];
-        const auto& tet = mesh.tets[t];
-        column(t, local_index(tet, j), local);
-        for (int i = 0; i < 4; ++i) {
-          const int k = position[tet[i]];
-          for (int b = 0; b < Blocks; ++b) vals[slot(k, b)] += local[i * Blocks + b];
-        }
-      }
+        for (int k = 0; k < m; ++k)
+          rows[block_slot<Blocks, Interleaved>(m, k, b)] =
+              Interleaved ? ring[k] * Blocks + b : b * n + ring[k];
+      assemble_column<Blocks, Interleaved>(mesh, stars, position, j, m, column, local,
+                                           values + start[j]);
     }
   });
   return A;

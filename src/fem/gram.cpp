@@ -8,17 +8,25 @@
 #include "common/cancellation.h"
 #include "fem/assembly.h"
 
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Spatial_sort_traits_adapter_3.h>
+#include <CGAL/hilbert_sort.h>
+#include <CGAL/property_map.h>
+
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 #include <utility>
 
 namespace pdd {
 namespace {
+
+using HilbertKernel = CGAL::Simple_cartesian<double>;
 
 // Per-thread dense scratch: a marker per row of the result and an accumulator.
 struct Scratch {
@@ -32,14 +40,23 @@ struct Scratch {
 // add(i, x) for every contribution x to entry (i, j), in an order that
 // depends only on j. Both run in parallel over j; the result is
 // deterministic.
+template <class Pattern, class Values, class Prepare>
+SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values,
+                                const std::vector<int>* order, Prepare prepare);
 template <class Pattern, class Values>
-SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values);
+SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values) {
+  return accumulate_columns(rows, n, pattern, values, nullptr, [](const int*, const int*) {});
+}
 template <class Pattern, class Values>
 SparseMatrix accumulate_columns(int n, Pattern pattern, Values values) {
   return accumulate_columns(n, n, pattern, values);
 }
-template <class Pattern, class Values>
-SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values) {
+// The same, with the values summed in slices of the columns taken in `order`
+// (all of 0..n-1; increasing when null), prepare(first, last) called before
+// each slice's columns [first, last): data that only those columns read.
+template <class Pattern, class Values, class Prepare>
+SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values,
+                                const std::vector<int>* order, Prepare prepare) {
   tbb::enumerable_thread_specific<Scratch> scratch([rows] {
     Scratch s;
     s.marker.assign(rows, -1);
@@ -71,7 +88,7 @@ SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values)
   double* r_value = result.valuePtr();
   for (auto& s : scratch) std::fill(s.marker.begin(), s.marker.end(), -1);
 
-  detail::polled_parallel_for(n, [&](int j) {
+  auto fill = [&](int j) {
     Scratch& s = scratch.local();
     s.touched.clear();
     values(j, [&](int i, double x) {
@@ -89,7 +106,23 @@ SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values)
       r_value[out] = s.accumulator[i];
       ++out;
     }
-  });
+  };
+  constexpr int kSlice = 1 << 15;  // polled_parallel_for's
+  std::vector<int> identity;
+  if (!order) {
+    identity.resize(n);
+    std::iota(identity.begin(), identity.end(), 0);
+    order = &identity;
+  }
+  for (int begin = 0; begin < n; begin += kSlice) {
+    const int end = std::min(n, begin + kSlice);
+    const int* columns = order->data();
+    prepare(columns + begin, columns + end);
+    tbb::parallel_for(tbb::blocked_range<int>(begin, end), [&](const tbb::blocked_range<int>& r) {
+      for (int k = r.begin(); k < r.end(); ++k) fill(columns[k]);
+    });
+    detail::poll();
+  }
   return result;
 }
 
@@ -185,40 +218,89 @@ SparseMatrix galerkin_product(const SparseMatrix& P, const SparseMatrix& A) {
 }
 
 SparseMatrix hessian_energy(const TetMesh& mesh) {
-  // Rows 9v + ab: column j holds, for each v in the ring of j, the 9 entries
-  // (H_v)_{ab, j} next to each other. Row (v, ab) of H is read off column v:
-  // (H_v)_{ab, k} = sum_t vol_t d_b(phi_v) d_a(phi_k) = (H_k)_{ba, v}, so
-  // no transpose of H is needed.
-  const SparseMatrix H = detail::hessian_matrix_rows(mesh, true);
-  detail::poll();  // the run's cancellation
+  // Column j = sum over v in the ring of j of (1 / m_v) H_v^T (H_v)_{:, j},
+  // H_v the 9 x |ring(v)| block of the rows of v. Row (v, ab) of H is read off
+  // column v: (H_v)_{ab, k} = sum_t vol_t d_b(phi_v) d_a(phi_k) = (H_k)_{ba, v}.
+  // The columns of H are assembled slice by slice, only those the slice's
+  // columns read, so that H (9 values per ring entry) is never held whole.
+  using namespace detail;
+  const int n = static_cast<int>(mesh.vertices.size());
+  const VertexStars stars = vertex_stars(mesh);
+  const std::vector<std::vector<int>> rings = one_rings(mesh, stars);
+  poll();  // the run's cancellation
   const Eigen::VectorXd inverse_mass = vertex_masses(mesh).cwiseInverse();
-  const int* h_outer = H.outerIndexPtr();
-  const int* h_inner = H.innerIndexPtr();
-  const double* h_value = H.valuePtr();
-  // Column j = sum over v of (1 / m_v) H_v^T (H_v)_{:, j}, H_v the dense
-  // 9 x |ring(v)| block of the rows of v.
-  return accumulate_columns(
-      static_cast<int>(mesh.vertices.size()),
-      [&](int j, auto&& visit) {
-        for (int p = h_outer[j]; p < h_outer[j + 1]; p += 9) {
-          const int v = h_inner[p] / 9;
-          for (int q = h_outer[v]; q < h_outer[v + 1]; q += 9) visit(h_inner[q] / 9);
+  // The assembled columns of H: column of vertex u at h + h_start[slot_of[u]],
+  // 9 values per vertex of ring(u).
+  std::vector<int> slot_of(n, -1), needed;
+  std::vector<long long> h_start;
+  std::vector<double> h;
+  PerThreadTable positions = per_thread_table(n);
+  // Each tet's gradients computed where used (four times) rather than stored.
+  auto column = [&](int t, int jl, double* out) {
+    hessian_column(tet_gradients(mesh, t), jl, out);
+  };
+  auto prepare = [&](const int* first, const int* last) {
+    for (int u : needed) slot_of[u] = -1;
+    needed.clear();
+    for (const int* j = first; j != last; ++j)
+      for (int v : rings[*j])
+        if (slot_of[v] < 0) {
+          slot_of[v] = static_cast<int>(needed.size());
+          needed.push_back(v);
         }
+    h_start.assign(needed.size() + 1, 0);
+    for (std::size_t i = 0; i < needed.size(); ++i)
+      h_start[i + 1] = h_start[i] + 9 * static_cast<long long>(rings[needed[i]].size());
+    h.resize(static_cast<std::size_t>(h_start.back()));
+    tbb::parallel_for(std::size_t(0), needed.size(), [&](std::size_t i) {
+      double local[36];
+      std::vector<int>& position = positions.local();
+      const std::vector<int>& ring = rings[needed[i]];
+      const int m = static_cast<int>(ring.size());
+      for (int k = 0; k < m; ++k) position[ring[k]] = k;
+      assemble_column<9, true>(mesh, stars, position, needed[i], m, column, local,
+                               h.data() + h_start[i]);
+    });
+  };
+  // Columns in Hilbert order: a slice's rings then overlap, and each column of
+  // H is assembled about once.
+  std::vector<int> order(n);
+  {
+    std::vector<HilbertKernel::Point_3> points;
+    points.reserve(n);
+    for (const Vec3& x : mesh.vertices) points.emplace_back(x.x(), x.y(), x.z());
+    std::vector<std::size_t> sorted(n);
+    std::iota(sorted.begin(), sorted.end(), std::size_t{0});
+    using Map = CGAL::Pointer_property_map<HilbertKernel::Point_3>::type;
+    CGAL::hilbert_sort(sorted.begin(), sorted.end(),
+                       CGAL::Spatial_sort_traits_adapter_3<HilbertKernel, Map>(
+                           CGAL::make_property_map(points)),
+                       CGAL::Hilbert_sort_median_policy());
+    std::copy(sorted.begin(), sorted.end(), order.begin());
+  }
+  return accumulate_columns(
+      n, n,
+      [&](int j, auto&& visit) {
+        for (int v : rings[j])
+          for (int k : rings[v]) visit(k);
       },
       [&](int j, auto&& add) {
-        for (int p = h_outer[j]; p < h_outer[j + 1]; p += 9) {
-          const int v = h_inner[p] / 9;
+        const double* hj = h.data() + h_start[slot_of[j]];  // (H_v)_{ab, j} at 3a + b
+        for (const int v : rings[j]) {
           const double w = inverse_mass[v];
-          const double* hj = h_value + p;  // (H_v)_{ab, j} at 3a + b
-          for (int q = h_outer[v]; q < h_outer[v + 1]; q += 9) {
-            const double* hk = h_value + q;  // (H_v)_{ab, k} at 3b + a, k = h_inner[q] / 9
+          const std::vector<int>& ring = rings[v];
+          const double* hv = h.data() + h_start[slot_of[v]];
+          for (std::size_t q = 0; q < ring.size(); ++q) {
+            const double* hk = hv + 9 * q;  // (H_v)_{ab, k} at 3b + a, k = ring[q]
             double x = 0;
             for (int a = 0; a < 3; ++a)
               for (int b = 0; b < 3; ++b) x += hj[3 * a + b] * hk[3 * b + a];
-            add(h_inner[q] / 9, w * x);
+            add(ring[q], w * x);
           }
+          hj += 9;
         }
-      });
+      },
+      &order, prepare);
 }
 
 }  // namespace pdd

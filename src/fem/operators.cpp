@@ -124,13 +124,7 @@ namespace detail {
 SparseMatrix hessian_matrix_rows(const TetMesh& mesh, bool interleaved) {
   const VertexStars stars = vertex_stars(mesh);
   const std::vector<TetGradients> gradients = all_tet_gradients(mesh);
-  const auto column = [&](int t, int jl, double* out) {
-    const TetGradients& g = gradients[t];
-    for (int i = 0; i < 4; ++i)
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b)
-          out[i * 9 + 3 * a + b] = g.volume * g.grad[i][b] * g.grad[jl][a];
-  };
+  const auto column = [&](int t, int jl, double* out) { hessian_column(gradients[t], jl, out); };
   if (interleaved) return assemble_by_columns<9, true>(mesh, stars, column);
   return assemble_by_columns<9>(mesh, stars, column);
 }
