@@ -119,8 +119,7 @@ struct ReconstructOptions {
   // given the isofacets in the input's coordinates, the Domain in the run's.
   std::shared_ptr<const SizingField> custom_sizing;
   DataDistanceOptions away_from_data;  // uniform and adaptive: coarser where no input is near
-                                       // (sizing.h; max_factor = 1 turns it off; with the
-                                       // trim, at least kTrimmedHoleCoarsening)
+                                       // (sizing.h; max_factor = 1 turns it off)
 
   int max_iterations = 12;             // solve-optimize-refine iterations at most
   std::size_t max_memory = 0;  // bytes the run may use (0: 3/4 of the memory available at its
@@ -196,10 +195,6 @@ struct NormalsReport {
   std::size_t filled = 0;       // zero normals (none given) replaced by estimated ones
   double seconds = 0;
 };
-
-// The least coarsening away from the data (DataDistanceOptions::max_factor) of
-// a trimmed run, unless it is off: what is far from the data is cut away.
-constexpr double kTrimmedHoleCoarsening = 16;
 
 // Checks and normalizes an attribute selection (ReconstructOptions::attributes):
 // "colors", "all", "none" or a comma-separated list of property names (letters,

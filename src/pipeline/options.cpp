@@ -192,8 +192,8 @@ std::vector<OptionSpec> make_specs() {
   s.push_back(number(
       "hole-coarsening",
       "Target areas grow with the squared distance to the nearest input point beyond 12 "
-      "average spacings, up to this factor (holes, unseen sides; 1: off; at least 16 with "
-      "--trim, which cuts that surface away)",
+      "average spacings, up to this factor (holes, unseen sides; 1: off; with --trim, which "
+      "cuts that surface away, 16 is faster on one-sided scans, and coarser near the data)",
       [](ReconstructOptions& o) -> double& { return o.away_from_data.max_factor; }, 1, true,
       1e6));
   s.push_back(number(

@@ -505,12 +505,6 @@ Result run_stages(const PointSet& points, const ReconstructOptions& options, Pro
   relative.normals = input.normals;
   for (Vec3& p : relative.points) p -= centre;
   ReconstructOptions resolved = relative_to(options, centre);
-  // The surface far from the data is cut away by the trim: coarser there, the
-  // run spends its vertices on what it keeps (hippo1: a domain 27 % smaller, the
-  // same trimmed surface; docs/benchmarks.md, "Real scans").
-  if (resolved.trim.distance > 0 && resolved.away_from_data.max_factor > 1)
-    resolved.away_from_data.max_factor =
-        std::max(resolved.away_from_data.max_factor, kTrimmedHoleCoarsening);
   // The input's noise for SSD's automatic value weight, once for all the solves.
   SsdOptions& ssd = resolved.solver.ssd;
   if (resolved.solver.kind == SolverKind::kSsd && ssd.alpha == 0 && ssd.noise < 0)
