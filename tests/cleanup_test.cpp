@@ -61,6 +61,42 @@ TEST(Cleanup, FewerBadTrianglesSameTopologyAndShape) {
   EXPECT_EQ(mesh.faces.size(), 2 * mesh.vertices.size() - 4);  // a closed genus-0 surface
 }
 
+// The relaxation (vertices toward their neighbours' centroid, lifted onto a
+// fitted quadric) takes the triangles toward equilateral and keeps the
+// vertices on the sphere to second order: against flips and collapses alone.
+TEST(Cleanup, RelaxingTheVerticesRaisesTheAnglesAndKeepsTheSphere) {
+  TriangleMesh relaxed = rough_sphere(), unrelaxed = relaxed;
+  const double mean_deviation_before = [&] {
+    double sum = 0;
+    for (const Vec3& v : relaxed.vertices) sum += std::abs(v.norm() - 1.0);
+    return sum / relaxed.vertices.size();
+  }();
+  CleanupOptions without;
+  without.relax_rounds = 0;
+  cleanup_isosurface(unrelaxed, without);
+  const CleanupReport report = cleanup_isosurface(relaxed);
+  const TriangleQuality a = triangle_quality(unrelaxed), b = triangle_quality(relaxed);
+  std::cout << report.moves << " moves; mean min angle " << a.mean_min_angle << " -> "
+            << b.mean_min_angle << ", under 20 deg " << a.fraction_below_20 << " -> "
+            << b.fraction_below_20 << "\n";
+  EXPECT_GT(report.moves, static_cast<int>(relaxed.vertices.size()) / 2);
+  EXPECT_GT(b.mean_min_angle, 45.0);
+  EXPECT_GT(b.mean_min_angle, a.mean_min_angle + 3.0);
+  EXPECT_LE(b.fraction_below_20, a.fraction_below_20);
+  const SurfaceTopology topology = surface_topology(relaxed);
+  EXPECT_TRUE(topology.closed && topology.manifold);
+  EXPECT_EQ(topology.euler_characteristic, 2);
+  double sum = 0;
+  for (const Vec3& v : relaxed.vertices) sum += std::abs(v.norm() - 1.0);
+  EXPECT_LT(sum / relaxed.vertices.size(), 1.5 * mean_deviation_before + 1e-3);
+  EXPECT_LE(max_sphere_deviation(relaxed), max_sphere_deviation(unrelaxed) + 0.005);
+
+  TriangleMesh m = rough_sphere();
+  CleanupOptions bad;
+  bad.relax_rounds = -1;
+  EXPECT_THROW(cleanup_isosurface(m, bad), std::invalid_argument);
+}
+
 // Two triangles of a unit square split along the diagonal that leaves two
 // right angles opposite it (not Delaunay when the square is squashed).
 TriangleMesh squashed_pair(double fold_height) {

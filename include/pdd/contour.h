@@ -83,11 +83,13 @@ struct CleanupOptions {
   double max_dihedral_degrees = 30;  // only where neighbouring triangles turn by at most this
   double needle_angle_degrees = 20;  // triangles with a smaller angle and a shortest edge at
                                      // most half the next are needles: that edge is collapsed
+  int relax_rounds = 3;  // rounds of vertex moves toward their neighbours' centroid, then flips
 };
 
 struct CleanupReport {
   int flips = 0;
   int collapses = 0;
+  int moves = 0;  // vertices moved toward their neighbours' centroid
 };
 
 // Improves the triangles of a closed or open oriented manifold mesh where it
@@ -95,9 +97,11 @@ struct CleanupReport {
 // swapped when the angles opposite it sum to more than pi), then collapses
 // of the shortest edge of needles to its midpoint (kept only if the link
 // condition holds and no other triangle turns by more than the dihedral
-// bound), then flips again. Orientation, manifoldness and the topology are
-// kept; vertices removed by collapses are dropped and the rest keep their
-// order. Throws std::invalid_argument if the mesh is not an oriented
+// bound), then flips again; then `relax_rounds` rounds of vertex moves (each
+// inner vertex halfway to its neighbours' centroid, on a quadric fitted to
+// them, only where that raises its smallest angle) and flips. Orientation,
+// manifoldness and the topology are kept; vertices removed by collapses are
+// dropped and the rest keep their order. Throws std::invalid_argument if the mesh is not an oriented
 // manifold or an option is out of range.
 CleanupReport cleanup_isosurface(TriangleMesh& mesh, const CleanupOptions& options = {});
 

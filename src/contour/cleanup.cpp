@@ -1,17 +1,20 @@
-// Clean-up of the final isosurface where it is nearly flat: Lawson edge flips
-// and collapses of the short edge of needles. Marching tetrahedra ties the
-// connectivity to the tets' edges, so even with crossings at the midpoints
-// (§3.3) an irregular crossing tet leaves a cap or a needle that no vertex
-// move fixes (docs/benchmarks.md, "Isosurface clean-up"). CGAL's Surface_mesh
+// Clean-up of the final isosurface where it is nearly flat: Lawson edge flips,
+// collapses of the short edge of needles, and vertices relaxed toward their
+// neighbours' centroid. Marching tetrahedra ties the connectivity to the
+// tets' edges, so even with crossings at the midpoints (§3.3) an irregular
+// crossing tet leaves a cap or a needle that no move of the domain's vertices
+// fixes (docs/benchmarks.md, "Isosurface clean-up"). CGAL's Surface_mesh
 // and Euler operations keep the halfedge bookkeeping.
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/Euler_operations.h>
+#include <Eigen/Cholesky>
 #include <pdd/contour.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -101,7 +104,71 @@ class Cleaner {
     return collapses;
   }
 
+  // Each inner vertex where the surface is nearly flat moves halfway to the
+  // centroid of its neighbours, kept on its star (the closest point of its
+  // triangles, so the surface stays the piecewise-linear one), where that
+  // raises the smallest angle around it and turns no triangle by more than
+  // max_dihedral_degrees.
+  int relax() {
+    int moves = 0;
+    for (Vertex v : m_.vertices()) {
+      detail::poll_every(v.idx());
+      if (m_.is_border(v)) continue;
+      const Vec3 x = position(v);
+      Vec3 centroid = Vec3::Zero(), n = Vec3::Zero();
+      int valence = 0;
+      std::vector<std::pair<Vec3, Vec3>> link;  // the far edge of each triangle, in order
+      for (Halfedge h : m_.halfedges_around_target(m_.halfedge(v))) {
+        const Vec3 a = position(m_.source(h)), b = position(m_.target(m_.next(h)));
+        link.emplace_back(a, b);
+        centroid += a;
+        n += (a - x).cross(b - x);
+        ++valence;
+      }
+      if (valence < 3 || n.norm() == 0) continue;
+      n.normalize();
+      bool flat = true;
+      for (const auto& [a, b] : link) flat = flat && unit_normal(x, a, b).dot(n) >= min_cosine_;
+      if (!flat) continue;
+      // Halfway to the centroid in the tangent plane, lifted onto the quadric
+      // h = c0 u^2 + c1 u v + c2 v^2 fitted to the neighbours' heights over it,
+      // so that the vertex stays on the surface to second order.
+      const Vec3 e1 = n.unitOrthogonal(), e2 = n.cross(e1);
+      Eigen::Matrix3d normal_matrix = Eigen::Matrix3d::Zero();
+      Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+      for (const auto& [a, b] : link) {
+        const Vec3 d = a - x;
+        const double u = d.dot(e1), w = d.dot(e2);
+        const Eigen::Vector3d row(u * u, u * w, w * w);
+        normal_matrix += row * row.transpose();
+        rhs += row * d.dot(n);
+      }
+      const Eigen::LDLT<Eigen::Matrix3d> fit(normal_matrix);
+      if (fit.info() != Eigen::Success || fit.vectorD().minCoeff() <= 0) continue;
+      const Eigen::Vector3d c = fit.solve(rhs);
+      const Vec3 step = 0.5 * (centroid / valence - x);
+      const double u = step.dot(e1), w = step.dot(e2);
+      const Vec3 target = x + u * e1 + w * e2 + (c[0] * u * u + c[1] * u * w + c[2] * w * w) * n;
+      double before = kPi, after = kPi;
+      bool turns = false;
+      for (const auto& [a, b] : link) {
+        before = std::min(before, smallest_angle(x, a, b));
+        after = std::min(after, smallest_angle(target, a, b));
+        turns = turns || unit_normal(target, a, b).dot(unit_normal(x, a, b)) < min_cosine_;
+      }
+      if (turns || after <= before) continue;
+      m_.point(v) = point(target);
+      ++moves;
+    }
+    return moves;
+  }
+
  private:
+  static Kernel::Point_3 point(const Vec3& x) { return Kernel::Point_3(x.x(), x.y(), x.z()); }
+  static double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+    return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
+  }
+
   Vec3 position(Vertex v) const {
     const auto& p = m_.point(v);
     return Vec3(p.x(), p.y(), p.z());
@@ -177,6 +244,9 @@ CleanupReport cleanup_isosurface(TriangleMesh& mesh, const CleanupOptions& optio
     throw std::invalid_argument(
         "cleanup_isosurface: the dihedral bound must be in [0, 90) degrees, got " +
         std::to_string(options.max_dihedral_degrees));
+  if (options.relax_rounds < 0)
+    throw std::invalid_argument("cleanup_isosurface: relax_rounds must be >= 0, got " +
+                                std::to_string(options.relax_rounds));
   if (!(options.needle_angle_degrees >= 0 && options.needle_angle_degrees < 60))
     throw std::invalid_argument(
         "cleanup_isosurface: the needle angle must be in [0, 60) degrees, got " +
@@ -198,6 +268,10 @@ CleanupReport cleanup_isosurface(TriangleMesh& mesh, const CleanupOptions& optio
   report.flips = cleaner.flip_all();
   report.collapses = cleaner.collapse_needles();
   if (report.collapses > 0) report.flips += cleaner.flip_all();
+  for (int round = 0; round < options.relax_rounds; ++round) {
+    report.moves += cleaner.relax();
+    report.flips += cleaner.flip_all();
+  }
 
   // Read back, renumbering the vertices that remain in their old order.
   std::vector<int> index(m.number_of_vertices() + m.number_of_removed_vertices(), -1);

@@ -98,7 +98,8 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
         << ", \"removed_unsupported_components\": " << s.unsupported_components.components
         << ", \"removed_unsupported_component_faces\": " << s.unsupported_components.faces
         << ", \"cleanup_flips\": " << s.cleanup.flips
-        << ", \"cleanup_collapses\": " << s.cleanup.collapses << "}";
+        << ", \"cleanup_collapses\": " << s.cleanup.collapses
+        << ", \"cleanup_moves\": " << s.cleanup.moves << "}";
   }
   out << "\n  ]\n}\n";
   return out.str();
