@@ -1,6 +1,7 @@
 // The trim's rim remeshed (trim.cpp): the cut through the triangles leaves
 // short edges and flat triangles where it passes near a vertex. Within two
-// rings of the boundary, short edges are collapsed, edges flipped and vertices
+// rings of the boundary, rim triangles flattened onto their boundary edge are
+// removed, short edges collapsed, edges flipped and vertices
 // moved in their tangent planes, each step kept only where it raises the
 // smallest angle of the triangles it touches and turns no triangle over.
 // Written here because the mesh is a plain face list: CGAL's remeshing
