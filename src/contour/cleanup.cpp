@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "common/cancellation.h"
+#include "contour/angles.h"
 
 namespace pdd {
 namespace {
@@ -111,13 +112,14 @@ class Cleaner {
   // max_dihedral_degrees.
   int relax() {
     int moves = 0;
+    std::vector<std::pair<Vec3, Vec3>> link;
     for (Vertex v : m_.vertices()) {
       detail::poll_every(v.idx());
       if (m_.is_border(v)) continue;
       const Vec3 x = position(v);
       Vec3 centroid = Vec3::Zero(), n = Vec3::Zero();
       int valence = 0;
-      std::vector<std::pair<Vec3, Vec3>> link;  // the far edge of each triangle, in order
+      link.clear();  // the far edge of each triangle, in order
       for (Halfedge h : m_.halfedges_around_target(m_.halfedge(v))) {
         const Vec3 a = position(m_.source(h)), b = position(m_.target(m_.next(h)));
         link.emplace_back(a, b);
@@ -149,11 +151,11 @@ class Cleaner {
       const Vec3 step = 0.5 * (centroid / valence - x);
       const double u = step.dot(e1), w = step.dot(e2);
       const Vec3 target = x + u * e1 + w * e2 + (c[0] * u * u + c[1] * u * w + c[2] * w * w) * n;
-      double before = kPi, after = kPi;
+      double before = 180, after = 180;
       bool turns = false;
       for (const auto& [a, b] : link) {
-        before = std::min(before, smallest_angle(x, a, b));
-        after = std::min(after, smallest_angle(target, a, b));
+        before = std::min(before, detail::min_angle_degrees(x, a, b));
+        after = std::min(after, detail::min_angle_degrees(target, a, b));
         turns = turns || unit_normal(target, a, b).dot(unit_normal(x, a, b)) < min_cosine_;
       }
       if (turns || after <= before) continue;
@@ -165,9 +167,6 @@ class Cleaner {
 
  private:
   static Kernel::Point_3 point(const Vec3& x) { return Kernel::Point_3(x.x(), x.y(), x.z()); }
-  static double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
-    return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
-  }
 
   Vec3 position(Vertex v) const {
     const auto& p = m_.point(v);

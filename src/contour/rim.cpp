@@ -16,17 +16,10 @@
 #include <utility>
 #include <vector>
 
+#include "contour/angles.h"
 #include "contour/components.h"
 
 namespace pdd::detail {
-
-double min_angle_degrees(const Vec3& a, const Vec3& b, const Vec3& c) {
-  auto angle = [](const Vec3& p, const Vec3& q, const Vec3& r) {
-    const Vec3 u = q - p, v = r - p;
-    return std::atan2(u.cross(v).norm(), u.dot(v));
-  };
-  return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)}) * (180 / M_PI);
-}
 
 namespace {
 

@@ -8,9 +8,6 @@
 
 namespace pdd::detail {
 
-// The smallest angle of the triangle (a, b, c), in degrees.
-double min_angle_degrees(const Vec3& a, const Vec3& b, const Vec3& c);
-
 // Within two rings of the boundary (its edges, a < b): triangles flattened onto
 // it removed, edges shorter than 0.4 `edge` collapsed, edges flipped and
 // vertices moved in their tangent planes, each only where it raises the

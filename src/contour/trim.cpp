@@ -19,6 +19,7 @@
 
 #include "common/nearest_neighbors.h"
 #include "common/union_find.h"
+#include "contour/angles.h"
 #include "contour/components.h"
 #include "contour/rim.h"
 
