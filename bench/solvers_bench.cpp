@@ -4,22 +4,30 @@
 // BoomerAMG. Records CG iterations to the default tolerance, setup and solve
 // seconds, and peak memory.
 //
-//   solvers_bench [--sizes 50000,200000,1000000] [--out bench/results/solvers.txt]
-//                 [--direct-max 450000] [--tolerance 1e-6] [--routes cg+multigrid,cholmod]
+//   solvers_bench [--inputs scan.ply,...] [--sizes 50000,200000,1000000]
+//                 [--out bench/results/solvers.txt] [--direct-max 450000]
+//                 [--tolerance 1e-6] [--routes cg+multigrid,cholmod]
 //
-// Domains: an ellipsoid's samples (1, 0.7, 0.5; exact normals, one sample per
-// 4 vertices) in Domain::initial, refined three times by a factor of 3 (two
-// thirds of the new vertices in a shell around the surface, one third spread
-// through the ball) and optimized once, like the progressive loop's last
-// iterations. The
-// multigrid route solves the four domains in order with one solver, so the
+// Domains, either
+// - --inputs: the loop's own, from `pdd reconstruct` with default options on
+//   each point set (every iteration's domain after its optimizer passes, as
+//   the solver saw it; the samples without the run's outliers), or
+// - --sizes: an ellipsoid's samples (1, 0.7, 0.5; exact normals, one sample
+//   per 4 vertices) in Domain::initial, refined three times by a factor of 3
+//   (two thirds of the new vertices in a shell around the surface, one third
+//   spread through the ball) and optimized once, random domains of about
+//   each size.
+// The multigrid route solves the domains in order with one solver, so the
 // earlier ones are its coarse levels, and reports the last solve; the other
 // routes solve the last domain alone. Every route runs in its own child
 // process (fork); its peak memory is the child's peak resident set less the
 // parent's at the fork (the domains). CHOLMOD is skipped above --direct-max
 // vertices, where its factor outgrows this machine.
 #include <pdd/domain.h>
+#include <pdd/io.h>
 #include <pdd/optimize.h>
+#include <pdd/outliers.h>
+#include <pdd/pipeline.h>
 #include <pdd/solvers.h>
 
 #include <Eigen/IterativeLinearSolvers>
@@ -109,6 +117,24 @@ void optimize(pdd::Domain& domain) {
   }
   domain.set_f(f);
   pdd::optimize_domain(domain, pdd::OptimizerOptions());
+}
+
+// The domains of a default reconstruction of `path`, one per solve, and its
+// samples as the solver saw them (without the outliers the run drops).
+std::vector<pdd::Domain> loop_domains(const std::string& path, pdd::PointSet& samples) {
+  pdd::PointSet points = pdd::read_points(path);
+  const std::vector<char> stray = pdd::find_outliers(points.points);
+  std::vector<char> keep(stray.size());
+  for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = !stray[i];
+  points.keep(keep);
+  std::vector<pdd::Domain> domains;
+  pdd::ReconstructOptions options;
+  options.outliers.ratio = 0;  // dropped above
+  options.on_iteration = [&](const pdd::IterationStats&, const pdd::Domain& d,
+                             const pdd::TriangleMesh&) { domains.push_back(d); };
+  pdd::reconstruct(points, options);
+  samples = std::move(points);
+  return domains;
 }
 
 struct Outcome {
@@ -307,6 +333,7 @@ std::string run_isolated(const Route& route, const std::vector<pdd::Domain>& dom
 
 int main(int argc, char** argv) {
   std::vector<std::size_t> sizes = {50000, 200000, 1000000};
+  std::vector<std::string> inputs;
   std::string out_path = "bench/results/solvers.txt";
   std::size_t direct_max = 450000;
   double tolerance = 1e-6;
@@ -317,6 +344,10 @@ int main(int argc, char** argv) {
       std::stringstream ss(argv[i + 1]);
       std::string item;
       while (std::getline(ss, item, ',')) sizes.push_back(std::stoul(item));
+    } else if (!std::strcmp(argv[i], "--inputs")) {
+      std::stringstream ss(argv[i + 1]);
+      std::string item;
+      while (std::getline(ss, item, ',')) inputs.push_back(item);
     } else if (!std::strcmp(argv[i], "--out")) {
       out_path = argv[i + 1];
     } else if (!std::strcmp(argv[i], "--direct-max")) {
@@ -337,7 +368,7 @@ int main(int argc, char** argv) {
   };
 
   std::ostringstream report;
-  report << "# solvers_bench: SSD (Eq. 15) on an ellipsoid's progressive domains, relative"
+  report << "# solvers_bench: SSD (Eq. 15) on progressive domains, relative"
          << " tolerance " << tolerance << "\n"
          << "# columns: route, CG iterations, |Ax-b|/|b|, multigrid levels, setup s, solve s"
          << " | peak MB over the domains'\n";
@@ -345,21 +376,32 @@ int main(int argc, char** argv) {
   report << "# built without hypre: no BoomerAMG route (bench/solvers.sh installs libhypre-dev)\n";
 #endif
   std::cout << report.str();
-  for (std::size_t target : sizes) {
-    std::mt19937 rng(7);
-    const pdd::PointSet samples = ellipsoid_samples(static_cast<int>(std::max<std::size_t>(2000, target / 4)));
+  // Each case: its domains (the last is solved) and samples.
+  const std::size_t cases = inputs.empty() ? sizes.size() : inputs.size();
+  for (std::size_t which = 0; which < cases; ++which) {
     const auto start = Clock::now();
+    pdd::PointSet samples;
     std::vector<pdd::Domain> domains;
-    domains.push_back(pdd::Domain::initial(samples));
-    grow(domains.back(), samples, target / 27, rng);
-    for (std::size_t k : {9, 3, 1}) {
-      domains.push_back(domains.back());
-      grow(domains.back(), samples, target / k, rng);
-      optimize(domains.back());
+    std::string origin;
+    if (!inputs.empty()) {
+      domains = loop_domains(inputs[which], samples);
+      origin = inputs[which] + " (the loop's domains)";
+    } else {
+      const std::size_t target = sizes[which];
+      std::mt19937 rng(7);
+      samples = ellipsoid_samples(static_cast<int>(std::max<std::size_t>(2000, target / 4)));
+      domains.push_back(pdd::Domain::initial(samples));
+      grow(domains.back(), samples, target / 27, rng);
+      for (std::size_t k : {9, 3, 1}) {
+        domains.push_back(domains.back());
+        grow(domains.back(), samples, target / k, rng);
+        optimize(domains.back());
+      }
+      origin = "ellipsoid (random domains)";
     }
     std::ostringstream head;
-    head << "\n## " << domains.back().num_vertices() << " vertices, " << domains.back().num_tets()
-         << " tets, " << samples.size() << " samples; earlier domains";
+    head << "\n## " << origin << ": " << domains.back().num_vertices() << " vertices, "
+         << domains.back().num_tets() << " tets, " << samples.size() << " samples; earlier domains";
     for (std::size_t k = 0; k + 1 < domains.size(); ++k) head << " " << domains[k].num_vertices();
     head << " (built in " << seconds_since(start) << " s)\n";
     std::cout << head.str() << std::flush;

@@ -369,10 +369,15 @@ TEST_P(ProgressiveLevels, MultigridIterationsStayBoundedAndMatchCholmod) {
     auto mg_tight = make_solver(tight);
     SolverOptions direct = options_for(GetParam());
     direct.linear.method = LinearMethod::kCholmod;
+    // The same multigrid with a point (Jacobi) smoother, for SSD.
+    SolverOptions point = mg_options;
+    point.linear.block_coupling = 1;
+    auto mg_point = make_solver(point);
+    const bool ssd = GetParam() == SolverKind::kSsd;
 
     Domain domain = Domain::initial(shape.samples);
     std::mt19937_64 rng(3);
-    std::vector<int> iterations;
+    std::vector<int> iterations, point_iterations;
     for (double edge : {0.2, 0.1, 0.05, 0.025}) {
       // Refined to this target edge with f the exact signed distance.
       const auto sizing = uniform_sizing(area_for_edge_length(edge));
@@ -388,9 +393,11 @@ TEST_P(ProgressiveLevels, MultigridIterationsStayBoundedAndMatchCholmod) {
       optimize_domain(domain, OptimizerOptions());
       const std::vector<double> g = mg->solve(domain, shape.samples);
       const std::vector<double> g_tight = mg_tight->solve(domain, shape.samples);
+      if (ssd) mg_point->solve(domain, shape.samples);
       if (domain.num_vertices() < mg_options.linear.direct_below) continue;
       EXPECT_EQ(mg->stats().method, "cg+multigrid");
       iterations.push_back(mg->stats().iterations);
+      if (ssd) point_iterations.push_back(mg_point->stats().iterations);
       const std::vector<double> f = make_solver(direct)->solve(domain, shape.samples);
       double scale = 0, diff = 0;
       for (std::size_t i = 0; i < f.size(); ++i) {
@@ -400,21 +407,23 @@ TEST_P(ProgressiveLevels, MultigridIterationsStayBoundedAndMatchCholmod) {
       std::cout << to_string(GetParam()) << " " << shape.name << ", edge " << edge << ": "
                 << domain.num_vertices() << " vertices, " << mg->stats().levels << " levels, "
                 << iterations.back() << " iterations to " << mg_options.linear.cg_tolerance
+                << (ssd ? " (" + std::to_string(point_iterations.back()) + " with a point smoother)"
+                        : std::string())
                 << "; against CHOLMOD " << diff / scale << " relative\n";
       EXPECT_LT(diff, 1e-8 * scale) << shape.name << ", edge " << edge;
     }
-    // Counted, not timed, over two refinements of 4x the vertices each:
-    // Poisson's iterations stay within 1.5x; SSD's (fourth order) grow, by
-    // at most 1.8x per refinement and 2.5x over both. Measured on the sphere
-    // 12 -> 20 -> 25 and, on the domains that the same refinement gives when
-    // the optimizer's products only round differently, 14 -> 24 -> 32
-    // (docs/benchmarks.md, "Multigrid").
+    // Counted, not timed, over two refinements of 4x the vertices each: at
+    // most 1.5x, per refinement and over both (measured: Poisson 5 -> 5 -> 5
+    // on both shapes; SSD sphere 11 -> 14 -> 12, torus 8 -> 10 -> 12). A
+    // point smoother does not reach SSD's strongly coupled pairs
+    // (block_jacobi.h): measured sphere 16 -> 29 -> 42, torus 26 -> 30 -> 29.
     ASSERT_EQ(iterations.size(), 3u) << shape.name;
-    const double bound = GetParam() == SolverKind::kPoisson ? 1.5 : 2.5;
-    const double step = GetParam() == SolverKind::kPoisson ? 1.5 : 1.8;
-    EXPECT_LE(iterations[2], bound * iterations[0]) << shape.name;
-    EXPECT_LE(iterations[1], step * iterations[0]) << shape.name;
-    EXPECT_LE(iterations[2], step * iterations[1]) << shape.name;
+    EXPECT_LE(iterations[2], 1.5 * iterations[0]) << shape.name;
+    EXPECT_LE(iterations[1], 1.5 * iterations[0]) << shape.name;
+    EXPECT_LE(iterations[2], 1.5 * iterations[1]) << shape.name;
+    if (ssd) {
+      EXPECT_GT(point_iterations[2], 2 * iterations[2]) << shape.name;
+    }
   }
 }
 

@@ -58,9 +58,13 @@ struct LinearSolverOptions {
   // Multigrid (docs/benchmarks.md, "Multigrid"): Chebyshev smoothing of this degree before and
   // after each coarse correction; each coarse level has about 1 / coarsening_ratio (>= 1.3) of
   // the vertices of the finer one; levels of coarsest_size vertices or fewer are factored.
-  int smoothing_degree = 6;
+  int smoothing_degree = 4;
   double coarsening_ratio = 3;
   std::size_t coarsest_size = 2000;
+  // The smoother inverts whole the diagonal blocks of unknowns i, j coupled by |a_ij| >
+  // block_coupling sqrt(a_ii a_jj) (groups of up to 16); >= 1 is plain Jacobi. SSD's squared
+  // Hessian has such pairs, and without them its CG iterations grow with the domain.
+  double block_coupling = 0.5;
 };
 
 // Screened Poisson, Eqs. (13)-(14):

@@ -2,6 +2,7 @@
 
 #include "common/conjugate_gradient.h"
 #include "common/parallel_kernels.h"
+#include "solvers/block_jacobi.h"
 
 #include <pdd/errors.h>
 
@@ -23,21 +24,21 @@ SparseMatrix compressed_transpose(const SparseMatrix& M) {
   return t;
 }
 
-// The largest eigenvalue of D^-1 A (A symmetric positive definite, D its
-// diagonal) from `steps` Lanczos steps on D^-1/2 A D^-1/2, from a fixed start.
-double largest_eigenvalue(const SparseMatrix& A, const Eigen::VectorXd& inverse_sqrt_diagonal,
-                          int steps) {
+// The largest eigenvalue of D^-1 A (A symmetric positive definite, D the
+// smoother's block diagonal) from `steps` Lanczos steps on D^-1/2 A D^-1/2,
+// from a fixed start.
+double largest_eigenvalue(const SparseMatrix& A, const BlockJacobi& D, int steps) {
   const Eigen::Index n = A.rows();
   steps = static_cast<int>(std::min<Eigen::Index>(steps, n));
-  Eigen::VectorXd v(n), previous = Eigen::VectorXd::Zero(n), w(n), scaled(n);
+  Eigen::VectorXd v(n), previous = Eigen::VectorXd::Zero(n), w(n), scaled(n), scaled_product(n);
   for (Eigen::Index i = 0; i < n; ++i) v[i] = 1.0 + 0.5 * std::sin(1.7 * static_cast<double>(i));
   v /= std::sqrt(deterministic_dot(v, v));
   std::vector<double> alpha, beta;
   double b = 0;
   for (int k = 0; k < steps; ++k) {
-    scaled = v.cwiseProduct(inverse_sqrt_diagonal);
-    symmetric_product(A, scaled, w);
-    w = w.cwiseProduct(inverse_sqrt_diagonal);
+    D.apply_inverse_sqrt(v, scaled);
+    symmetric_product(A, scaled, scaled_product);
+    D.apply_inverse_sqrt(scaled_product, w);
     const double a = deterministic_dot(w, v);
     alpha.push_back(a);
     w -= a * v + b * previous;
@@ -67,10 +68,10 @@ struct Multigrid::Impl {
     SparseMatrix galerkin;            // P^T A P of the finer level
     const SparseMatrix* P = nullptr;  // to this level from the next coarser one
     SparseMatrix R;                   // P^T, stored by columns: the rows of P
-    Eigen::VectorXd inverse_diagonal;
+    BlockJacobi smoother;             // D, the diagonal with blocks of strongly coupled unknowns
     double largest = 0;               // of D^-1 A, a bound from Lanczos
     // Work vectors (the V-cycle is const but reuses them: one at a time).
-    mutable Eigen::VectorXd residual, correction, direction, product, coarse_rhs, coarse_x;
+    mutable Eigen::VectorXd residual, correction, direction, product, scaled, coarse_rhs, coarse_x;
   };
   MultigridOptions options;
   std::vector<Level> levels;
@@ -78,25 +79,28 @@ struct Multigrid::Impl {
 
   // Smoothing of A x = b from x: the fourth-kind Chebyshev polynomial in
   // D^-1 A of Lottes (2023, "Optimal polynomial smoothers for multigrid
-  // V-cycles", Alg. 3), which needs only the largest eigenvalue. From
-  // x = 0 when zero_start (no product for the first residual).
+  // V-cycles", Alg. 3), which needs only the largest eigenvalue, D the
+  // level's block Jacobi (block_jacobi.h). From x = 0 when zero_start (no
+  // product for the first residual).
   void smooth(const Level& l, const Eigen::VectorXd& b, Eigen::VectorXd& x,
               bool zero_start) const {
     const double rho = l.largest;
     Eigen::VectorXd& r = l.residual;
     Eigen::VectorXd& d = l.direction;
     Eigen::VectorXd& q = l.product;
+    Eigen::VectorXd& z = l.scaled;
     const Eigen::Index n = b.size();
     if (zero_start)
-      q.setZero(n);
-    else
+      r = b;
+    else {
       symmetric_product(*l.A, x, q);
-    r.resize(n);
+      r = b - q;
+    }
+    l.smoother.apply_inverse(r, z);
     d.resize(n);
     for_blocks(n, [&](Eigen::Index begin, Eigen::Index end) {
       for (Eigen::Index i = begin; i < end; ++i) {
-        r[i] = b[i] - q[i];
-        d[i] = (4.0 / 3.0) / rho * l.inverse_diagonal[i] * r[i];
+        d[i] = (4.0 / 3.0) / rho * z[i];
         x[i] += d[i];
       }
     });
@@ -104,10 +108,11 @@ struct Multigrid::Impl {
       poll();  // the run's cancellation, inside a CG iteration (seconds at 1M)
       symmetric_product(*l.A, d, q);
       const double c1 = (2.0 * k - 1) / (2.0 * k + 3), c2 = (8.0 * k + 4) / (2.0 * k + 3) / rho;
+      r -= q;
+      l.smoother.apply_inverse(r, z);
       for_blocks(n, [&](Eigen::Index begin, Eigen::Index end) {
         for (Eigen::Index i = begin; i < end; ++i) {
-          r[i] -= q[i];
-          d[i] = c1 * d[i] + c2 * l.inverse_diagonal[i] * r[i];
+          d[i] = c1 * d[i] + c2 * z[i];
           x[i] += d[i];
         }
       });
@@ -165,12 +170,10 @@ void Multigrid::setup(const SparseMatrix& A, const std::vector<SparseMatrix>& pr
   }
   for (std::size_t k = 0; k + 1 < d.levels.size(); ++k) {
     Impl::Level& l = d.levels[k];
-    const Eigen::VectorXd diagonal = l.A->diagonal();
-    if (!(diagonal.minCoeff() > 0))
-      throw SolverError("multigrid: the system matrix has a non-positive diagonal entry");
-    l.inverse_diagonal = diagonal.cwiseInverse();
+    l.smoother = BlockJacobi(*l.A, options.block_coupling, options.max_block);
+    poll();
     // Lanczos' estimate lies below the true value: a margin of 10 %.
-    l.largest = 1.1 * largest_eigenvalue(*l.A, diagonal.cwiseSqrt().cwiseInverse(), 12);
+    l.largest = 1.1 * largest_eigenvalue(*l.A, l.smoother, 12);
     poll();
   }
   d.coarsest = std::make_unique<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>>();

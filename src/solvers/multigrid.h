@@ -2,8 +2,9 @@
 //
 // The levels are given as prolongations (the progressive hierarchy of
 // hierarchy.h); the coarse operators are the Galerkin products P^T A P, the
-// smoother is a Chebyshev polynomial in D^-1 A (D = diag A), run on all
-// cores, and the coarsest level is factored by CHOLMOD. Hand-written on
+// smoother is a Chebyshev polynomial in D^-1 A (D the diagonal of A with
+// blocks for strongly coupled unknowns, block_jacobi.h), run on all cores,
+// and the coarsest level is factored by CHOLMOD. Hand-written on
 // Eigen and TBB: Debian's hypre is built without OpenMP, so in one process
 // its BoomerAMG runs on one core, and on the SSD systems it needs 2-4x the
 // iterations of this hierarchy (docs/benchmarks.md, "Multigrid").
@@ -19,9 +20,12 @@
 namespace pdd::detail {
 
 struct MultigridOptions {
-  int smoothing_degree = 6;          // Chebyshev polynomial degree, before and after the
+  int smoothing_degree = 4;          // Chebyshev polynomial degree, before and after the
                                      // coarse correction
   std::size_t coarsest_size = 4000;  // levels this small are solved directly
+  double block_coupling = 0.5;       // unknowns coupled more strongly than this are smoothed
+                                     // together (block_jacobi.h; 1: plain Jacobi)
+  int max_block = 16;                // in groups of at most this many
 };
 
 class Multigrid {

@@ -1,0 +1,153 @@
+#include "solvers/block_jacobi.h"
+
+#include "common/cancellation.h"
+#include "common/parallel_kernels.h"
+#include "common/union_find.h"
+
+#include <pdd/errors.h>
+
+#include <Eigen/Eigenvalues>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace pdd::detail {
+
+BlockJacobi::BlockJacobi(const SparseMatrix& A, double coupling, int max_block) {
+  if (max_block > kMaxBlock) throw std::invalid_argument("BlockJacobi: blocks of at most 64");
+  const int n = static_cast<int>(A.rows());
+  const Eigen::VectorXd diagonal = A.diagonal();
+  if (!(diagonal.minCoeff() > 0))
+    throw SolverError("multigrid: the system matrix has a non-positive diagonal entry");
+  const int* outer = A.outerIndexPtr();
+  const int* inner = A.innerIndexPtr();
+  const double* value = A.valuePtr();
+
+  // The strong couplings i > j of each column, found in parallel, then joined
+  // in column order (the groups do not depend on the thread count).
+  std::vector<std::vector<int>> strong(static_cast<std::size_t>(n));
+  if (coupling < 1 && max_block > 1)
+    polled_parallel_for(n, [&](int j) {
+      for (int p = outer[j]; p < outer[j + 1]; ++p) {
+        const int i = inner[p];
+        if (i > j && std::abs(value[p]) > coupling * std::sqrt(diagonal[i] * diagonal[j]))
+          strong[static_cast<std::size_t>(j)].push_back(i);
+      }
+    });
+  std::vector<int> parent = singletons(static_cast<std::size_t>(n));
+  std::vector<int> size(static_cast<std::size_t>(n), 1);
+  for (int j = 0; j < n; ++j)
+    for (int i : strong[static_cast<std::size_t>(j)]) {
+      const int a = find_root(parent, i), b = find_root(parent, j);
+      if (a != b && size[a] + size[b] <= max_block) {
+        parent[a] = b;
+        size[b] += size[a];
+      }
+    }
+  strong = {};
+  poll();
+
+  // Groups numbered by their smallest unknown, members in increasing order.
+  std::vector<int> group_of_root(static_cast<std::size_t>(n), -1), count;
+  for (int v = 0; v < n; ++v) {
+    const int r = find_root(parent, v);
+    if (size[r] < 2) continue;
+    if (group_of_root[r] < 0) {
+      group_of_root[r] = static_cast<int>(count.size());
+      count.push_back(0);
+    }
+    ++count[group_of_root[r]];
+  }
+  const std::size_t groups = count.size();
+  block_start_.assign(groups + 1, 0);
+  for (std::size_t g = 0; g < groups; ++g) block_start_[g + 1] = block_start_[g] + count[g];
+  block_unknown_.resize(static_cast<std::size_t>(block_start_.back()));
+  matrix_start_.assign(groups + 1, 0);
+  for (std::size_t g = 0; g < groups; ++g)
+    matrix_start_[g + 1] = matrix_start_[g] + static_cast<std::size_t>(count[g]) * count[g];
+  {
+    std::vector<int> fill(block_start_.begin(), block_start_.end() - 1);
+    for (int v = 0; v < n; ++v) {
+      const int r = find_root(parent, v);
+      if (size[r] >= 2) block_unknown_[static_cast<std::size_t>(fill[group_of_root[r]]++)] = v;
+    }
+  }
+  inverse_diagonal_ = diagonal.cwiseInverse();
+  for (int v : block_unknown_) inverse_diagonal_[v] = 0;
+
+  // Each block's inverse and inverse square root from its eigenpairs.
+  inverse_.resize(matrix_start_.back());
+  inverse_sqrt_.resize(matrix_start_.back());
+  std::vector<char> definite(groups, 1);
+  tbb::parallel_for(std::size_t(0), groups, [&](std::size_t g) {
+    const int* members = block_unknown_.data() + block_start_[g];
+    const int m = block_start_[g + 1] - block_start_[g];
+    Eigen::MatrixXd block(m, m);
+    for (int c = 0; c < m; ++c) {
+      const int j = members[c];
+      const int* first = inner + outer[j];
+      const int* last = inner + outer[j + 1];
+      for (int a = 0; a < m; ++a) {
+        const int* at = std::lower_bound(first, last, members[a]);
+        block(a, c) = at != last && *at == members[a] ? value[at - inner] : 0.0;
+      }
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(block);
+    if (eigen.info() != Eigen::Success || !(eigen.eigenvalues().minCoeff() > 0)) {
+      definite[g] = 0;
+      return;
+    }
+    const Eigen::VectorXd s = eigen.eigenvalues().cwiseSqrt().cwiseInverse();
+    const Eigen::MatrixXd& V = eigen.eigenvectors();
+    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+        inverse_sqrt_.data() + matrix_start_[g], m, m) = V * s.asDiagonal() * V.transpose();
+    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+        inverse_.data() + matrix_start_[g], m, m) =
+        V * s.cwiseAbs2().asDiagonal() * V.transpose();
+  });
+  const auto bad = std::find(definite.begin(), definite.end(), 0);
+  if (bad != definite.end())
+    throw SolverError("multigrid: a block of " +
+                      std::to_string(block_start_[bad - definite.begin() + 1] -
+                                     block_start_[bad - definite.begin()]) +
+                      " strongly coupled unknowns is not positive definite");
+}
+
+template <bool kSqrt>
+void BlockJacobi::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
+  const Eigen::Index n = r.size();
+  z.resize(n);
+  for_blocks(n, [&](Eigen::Index begin, Eigen::Index end) {
+    for (Eigen::Index i = begin; i < end; ++i)
+      z[i] = (kSqrt ? std::sqrt(inverse_diagonal_[i]) : inverse_diagonal_[i]) * r[i];
+  });
+  const std::vector<double>& dense = kSqrt ? inverse_sqrt_ : inverse_;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_blocks(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      double local[kMaxBlock];
+                      for (std::size_t g = range.begin(); g < range.end(); ++g) {
+                        const int* members = block_unknown_.data() + block_start_[g];
+                        const int m = block_start_[g + 1] - block_start_[g];
+                        const double* M = dense.data() + matrix_start_[g];
+                        for (int a = 0; a < m; ++a) local[a] = r[members[a]];
+                        for (int a = 0; a < m; ++a) {
+                          double s = 0;
+                          for (int c = 0; c < m; ++c) s += M[a * m + c] * local[c];
+                          z[members[a]] = s;
+                        }
+                      }
+                    });
+}
+
+void BlockJacobi::apply_inverse(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
+  apply<false>(r, z);
+}
+
+void BlockJacobi::apply_inverse_sqrt(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
+  apply<true>(r, z);
+}
+
+}  // namespace pdd::detail
