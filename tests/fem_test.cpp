@@ -190,6 +190,35 @@ TEST_F(FemTest, GramMatrixMatchesEigensProduct) {
       ASSERT_LT(mine.innerIndexPtr()[p - 1], mine.innerIndexPtr()[p]);
 }
 
+TEST_F(FemTest, GalerkinProductMatchesEigensProduct) {
+  // The multigrid's coarse operator P^T A P: A the squared Hessian (two-ring),
+  // P a prolongation's shape (a unit row for every third vertex, up to four
+  // weights summing to 1 for the others).
+  const SparseMatrix A = hessian_energy(mesh);
+  const int n = static_cast<int>(A.rows()), m = (n + 2) / 3;
+  std::vector<Eigen::Triplet<double>> entries;
+  std::mt19937 rng(5);
+  for (int r = 0; r < n; ++r) {
+    if (r % 3 == 0) {
+      entries.emplace_back(r, r / 3, 1.0);
+      continue;
+    }
+    double w[4], sum = 0;
+    for (double& x : w) sum += (x = 0.1 + std::uniform_real_distribution<double>()(rng));
+    for (int k = 0; k < 4; ++k) entries.emplace_back(r, (r / 3 + 7 * k) % m, w[k] / sum);
+  }
+  SparseMatrix P(n, m);
+  P.setFromTriplets(entries.begin(), entries.end());
+  P.makeCompressed();
+  const SparseMatrix mine = galerkin_product(P, A);
+  const SparseMatrix eigen = SparseMatrix(P.transpose()) * A * P;
+  EXPECT_LT(SparseMatrix(mine - eigen).norm(), 1e-12 * eigen.norm());
+  EXPECT_EQ(mine.nonZeros(), eigen.nonZeros());
+  for (Eigen::Index j = 0; j < mine.cols(); ++j)
+    for (int p = mine.outerIndexPtr()[j] + 1; p < mine.outerIndexPtr()[j + 1]; ++p)
+      ASSERT_LT(mine.innerIndexPtr()[p - 1], mine.innerIndexPtr()[p]);
+}
+
 // H^T M^-1 H, the squared Hessian energy by its definition.
 SparseMatrix hessian_energy_by_definition(const TetMesh& m) {
   const SparseMatrix H = hessian_matrix(m);

@@ -202,19 +202,57 @@ SparseMatrix galerkin_product(const SparseMatrix& P, const SparseMatrix& A) {
     throw std::invalid_argument("galerkin_product: P must have as many rows as A");
   const Columns p(P), a(A);
   const Columns r(P, Columns::Transposed{});  // column i of r is row i of P
-  // Column j = sum over k in column j of P of P_kj sum over i of A_ik (row i of P)^T.
-  auto for_each_term = [&](int j, auto&& term) {
+  // Column j = P^T (A p_j): A p_j summed first, on its few hundred fine rows,
+  // then each fine row's sum mapped through its row of P. Mapping every term
+  // of A p_j instead costs 2.5x the additions (4 per term).
+  struct Fine {
+    std::vector<int> marker;  // the call that last reached each fine row
+    int call = 0;
+    std::vector<double> sum;
+    std::vector<int> touched;
+  };
+  const int n = static_cast<int>(A.rows());
+  tbb::enumerable_thread_specific<Fine> scratch([n] {
+    Fine f;
+    f.marker.assign(n, -1);
+    f.sum.assign(n, 0.0);
+    return f;
+  });
+  // The fine rows of A p_j, in the order first reached, with their sums.
+  auto fine_column = [&](int j) -> Fine& {
+    Fine& f = scratch.local();
+    f.touched.clear();
+    if (f.call == std::numeric_limits<int>::max()) {
+      std::fill(f.marker.begin(), f.marker.end(), -1);
+      f.call = 0;
+    }
+    const int call = ++f.call;  // the pattern's pass and the values' reach each column
     for (int pk = p.outer[j]; pk < p.outer[j + 1]; ++pk)
       for (int ai = a.outer[p.inner[pk]]; ai < a.outer[p.inner[pk] + 1]; ++ai) {
         const int i = a.inner[ai];
-        const double w = p.value[pk] * a.value[ai];
-        for (int q = r.outer[i]; q < r.outer[i + 1]; ++q) term(r.inner[q], w * r.value[q]);
+        const double x = p.value[pk] * a.value[ai];
+        if (f.marker[i] != call) {
+          f.marker[i] = call;
+          f.sum[i] = x;
+          f.touched.push_back(i);
+        } else {
+          f.sum[i] += x;
+        }
       }
+    return f;
   };
   return accumulate_columns(
       static_cast<int>(P.cols()),
-      [&](int j, auto&& visit) { for_each_term(j, [&](int i, double) { visit(i); }); },
-      [&](int j, auto&& add) { for_each_term(j, add); });
+      [&](int j, auto&& visit) {
+        const Fine& f = fine_column(j);
+        for (int i : f.touched)
+          for (int q = r.outer[i]; q < r.outer[i + 1]; ++q) visit(r.inner[q]);
+      },
+      [&](int j, auto&& add) {
+        const Fine& f = fine_column(j);
+        for (int i : f.touched)
+          for (int q = r.outer[i]; q < r.outer[i + 1]; ++q) add(r.inner[q], f.sum[i] * r.value[q]);
+      });
 }
 
 SparseMatrix hessian_energy(const TetMesh& mesh) {
