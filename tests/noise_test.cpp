@@ -38,6 +38,22 @@ TEST(Noise, TheEstimateFollowsTheNoiseAndIgnoresTheCurvature) {
   EXPECT_GT(high, 1.2 * low);
 }
 
+TEST(Noise, PastTheSampleSizeTheStridedEstimateStillFollowsTheNoise) {
+  // 150k points: the quartile is taken over every third one
+  // (statistics_sample.h), their neighbourhoods from all of them. The same
+  // sphere and noise as a denser sample, so that the estimate is nearer the
+  // noise than at 20k (spacing 0.008 against 0.025).
+  PointSet dense = test::sample_sphere(150000);
+  const double clean = estimate_noise(dense);
+  test::add_noise(dense, 0.005, 11);
+  const double noisy = estimate_noise(dense);
+  std::cout << "noise estimate at 150k points: clean " << clean << ", sigma 0.005: " << noisy
+            << "\n";
+  EXPECT_LT(clean, 0.05 * 0.005);
+  EXPECT_GT(noisy, 0.6 * 0.005);
+  EXPECT_LT(noisy, 1.2 * 0.005);
+}
+
 TEST(Noise, TheValueWeightIsKOverTheRelativeNoiseSquaredUpToItsCap) {
   EXPECT_DOUBLE_EQ(ssd_value_weight(0.01, 2.0), kSsdValueWeightNoiseScale / (0.005 * 0.005));
   EXPECT_DOUBLE_EQ(ssd_value_weight(0.02, 4.0), ssd_value_weight(0.01, 2.0));  // scale-free

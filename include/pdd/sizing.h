@@ -23,7 +23,8 @@ class SizingField {
 // Area of the equilateral triangle of edge h: sqrt(3)/4 h^2.
 double area_for_edge_length(double h);
 
-// Average distance from an input point to its k nearest neighbours (CGAL).
+// Average distance from an input point to its k nearest neighbours (CGAL), over
+// every stride-th point past 65536 of them.
 double average_spacing(const PointSet& input, int k = 6);
 
 // The default uniform target: triangles whose edge is the input's average

@@ -107,8 +107,9 @@ struct SsdOptions {
 // of the RMS residual of a cubic height field fitted to each point's
 // `neighbors` nearest neighbours (in their principal frame). The lower
 // quartile, so that sharp edges and the curvature of sparsely sampled parts,
-// whose fits leave larger residuals, do not count as noise. 0 when the input
-// has fewer points than that.
+// whose fits leave larger residuals, do not count as noise. Past 65536 points,
+// over every stride-th one of them (their neighbours from all). 0 when the
+// input has fewer points than `neighbors`.
 double estimate_noise(const PointSet& points, int neighbors = 20);
 
 // SSD's value weight alpha (Eq. 15) for samples of noise sigma whose largest

@@ -3,6 +3,7 @@
 #include <pdd/sizing.h>
 
 #include "common/nearest_neighbors.h"
+#include "common/statistics_sample.h"
 
 #include <CGAL/Monge_via_jet_fitting.h>
 #include <CGAL/Simple_cartesian.h>
@@ -155,18 +156,20 @@ double average_spacing(const PointSet& input, int k) {
   // CGAL's compute_average_spacing (the mean over the points of the mean
   // distance from each to its k + 1 nearest, itself among them) on CGAL's
   // kd-tree, written out so that the run's cancellation is polled and both
-  // cores work: at a million points it takes seconds.
+  // cores work, over every stride-th point past 65536 (statistics_sample.h).
   if (input.points.empty() || k < 1) return 0;
   const detail::NearestNeighbors tree(input.points);
   const std::vector<Vec3>& x = input.points;
-  std::vector<double> spacing(x.size());
-  detail::polled_parallel_for(x.size(), [&](std::size_t i) {
+  const std::size_t stride = detail::statistics_stride(x.size());
+  std::vector<double> spacing((x.size() + stride - 1) / stride);
+  detail::polled_parallel_for(spacing.size(), [&](std::size_t s) {
+    const std::size_t i = s * stride;
     const std::vector<int> near = tree.query(x[i], k + 1);
     double sum = 0;
     for (int j : near) sum += (x[j] - x[i]).norm();
-    spacing[i] = sum / static_cast<double>(near.size());
+    spacing[s] = sum / static_cast<double>(near.size());
   });
-  return std::accumulate(spacing.begin(), spacing.end(), 0.0) / static_cast<double>(x.size());
+  return std::accumulate(spacing.begin(), spacing.end(), 0.0) / static_cast<double>(spacing.size());
 }
 
 double default_target_edge(const PointSet& input) {

@@ -4,6 +4,7 @@
 
 #include "common/cancellation.h"
 #include "common/nearest_neighbors.h"
+#include "common/statistics_sample.h"
 
 #include <Eigen/Dense>
 #include <tbb/parallel_for.h>
@@ -50,9 +51,11 @@ double estimate_noise(const PointSet& points, int neighbors) {
                      std::to_string(neighbors));
   if (static_cast<int>(points.size()) < neighbors) return 0;
   const detail::NearestNeighbors knn(points.points);
-  std::vector<double> residual(points.size());
-  detail::polled_parallel_for(points.size(), [&](std::size_t i) {
-    residual[i] = cubic_fit_residual(points.points, knn.query(points.points[i], neighbors));
+  const std::size_t stride = detail::statistics_stride(points.size());
+  std::vector<double> residual((points.size() + stride - 1) / stride);
+  detail::polled_parallel_for(residual.size(), [&](std::size_t i) {
+    const Vec3& p = points.points[i * stride];
+    residual[i] = cubic_fit_residual(points.points, knn.query(p, neighbors));
   });
   const auto quartile = residual.begin() + residual.size() / 4;
   std::nth_element(residual.begin(), quartile, residual.end());
