@@ -43,6 +43,18 @@ double angle(const Vec3& apex, const Vec3& u, const Vec3& w) {
   return std::atan2(x.cross(y).norm(), x.dot(y));
 }
 
+// Whether the angles at c and at d opposite the edge (a, b) sum to more than
+// pi (by 1e-12): sin(alpha + beta) < 0, from the sines and cosines scaled by
+// the edges' lengths, without two atan2 per edge visited by the flips.
+bool opposite_angles_exceed_pi(const Vec3& c, const Vec3& d, const Vec3& a, const Vec3& b) {
+  const Vec3 x1 = a - c, y1 = b - c, x2 = b - d, y2 = a - d;
+  const double s1 = x1.cross(y1).norm(), c1 = x1.dot(y1);
+  const double s2 = x2.cross(y2).norm(), c2 = x2.dot(y2);
+  const double scale =
+      std::sqrt(x1.squaredNorm() * y1.squaredNorm() * x2.squaredNorm() * y2.squaredNorm());
+  return s1 * c2 + c1 * s2 < -1e-12 * scale;
+}
+
 Vec3 unit_normal(const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 n = (b - a).cross(c - a);
   const double length = n.norm();
@@ -184,7 +196,7 @@ class Cleaner {
     const Vec3 pa = position(a), pb = position(b), pc = position(c), pd = position(d);
     const Vec3 n1 = unit_normal(pa, pb, pc), n2 = unit_normal(pb, pa, pd);
     if (n1.dot(n2) < min_cosine_) return false;                              // not flat enough
-    if (angle(pc, pa, pb) + angle(pd, pb, pa) <= kPi + 1e-12) return false;  // Delaunay already
+    if (!opposite_angles_exceed_pi(pc, pd, pa, pb)) return false;  // Delaunay already
     // The new triangles (c, a, d) and (d, b, c) must face the same way.
     const Vec3 n = n1 + n2;
     return unit_normal(pc, pa, pd).dot(n) > 0 && unit_normal(pd, pb, pc).dot(n) > 0;
