@@ -2,18 +2,25 @@
 #include <pdd/optimize.h>
 
 #include "common/cancellation.h"
+#include "common/parallel_kernels.h"
 #include "optimize/energy_terms.h"
 
 #include <cmath>
 
 namespace pdd {
 
+// A is symmetric: its products run on all cores (Eigen's column-major
+// product is serial, 0.5 s at 1.6M vertices).
 double DomainEnergy::value(const Eigen::VectorXd& x) const {
-  return x.dot(A * x) - 2.0 * b.dot(x) + c;
+  Eigen::VectorXd Ax;
+  detail::symmetric_product(A, x, Ax);
+  return x.dot(Ax) - 2.0 * b.dot(x) + c;
 }
 
 Eigen::VectorXd DomainEnergy::gradient(const Eigen::VectorXd& x) const {
-  return 2.0 * (A * x - b);
+  Eigen::VectorXd Ax;
+  detail::symmetric_product(A, x, Ax);
+  return 2.0 * (Ax - b);
 }
 
 Eigen::VectorXd stacked_positions(const Domain& domain) {

@@ -190,9 +190,11 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
   for (bool f : energy.fixed) report.fixed_vertices += f;
 
   const Eigen::VectorXd x0 = stacked_positions(domain);
-  const Eigen::VectorXd half_gradient = energy.A * x0 - energy.b;
+  Eigen::VectorXd half_gradient;
+  detail::symmetric_product(energy.A, x0, half_gradient);
   detail::poll();
-  report.energy_before = energy.value(x0);
+  report.energy_before = x0.dot(half_gradient) - 2.0 * energy.b.dot(x0) + energy.c;  // E(x0)
+  half_gradient -= energy.b;
   detail::poll();
   Eigen::VectorXd step = minimize(energy, x0, options, report) - x0;
 
@@ -233,7 +235,9 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
                                  located)))
       continue;
     // E(x0 + a s) - E(x0) = a^2 s.As + 2 a s.(A x0 - b).
-    const double curvature = step.dot(energy.A * step);
+    Eigen::VectorXd A_step;
+    detail::symmetric_product(energy.A, step, A_step);
+    const double curvature = step.dot(A_step);
     const double slope = step.dot(half_gradient);
     energy_change = alpha * alpha * curvature + 2 * alpha * slope;
     if (energy_change > 0) {
