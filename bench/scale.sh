@@ -117,7 +117,7 @@ with open(sys.argv[1], 'rb') as f:
     echo "  $name: PoissonRecon depth $d: $f triangles, $(seconds "$work/pr$d.time") s" >&2
   done
   t_pr="$(seconds "$work/pr$best.time")"
-  row="| $name | $n_points | $t_pdd | $m_pdd | $vertices | $triangles | $(awk -v t="$t_pdd" -v n="$triangles" 'BEGIN { printf "%.1f", t / n * 1e5 }') | $stages | $budget | $best | $(faces "$work/pr$best.ply") | $t_pr | $(peak_mb "$work/pr$best.time") | $(awk -v a="$t_pdd" -v b="$t_pr" 'BEGIN { printf "%.0f", a / b }') |"
+  row="| $name | $n_points | $t_pdd | $m_pdd | $vertices | $triangles | $(awk -v t="$t_pdd" -v n="$triangles" 'BEGIN { printf "%.1f", t / n * 1e5 }') | $stages | $budget | $best | $(faces "$work/pr$best.ply") | $t_pr | $(peak_mb "$work/pr$best.time") | $(awk -v a="$t_pdd" -v b="$t_pr" 'BEGIN { printf "%.1f", a / b }') |"
   echo "$row" | tee -a "$work/table.md"
 done
 mkdir -p "$(dirname "$out")"
