@@ -212,8 +212,9 @@ struct Result {
                       // is off, with the selected attributes at its vertices
   Domain domain;      // the final domain, f = the final solution
   std::vector<IterationStats> iterations;  // the last entry is the final solve
-  double noise = 0;  // SSD with the automatic value weight: estimate_noise(points) (solvers.h);
-                     // otherwise 0. The weight of each solve is in its SolverStats.
+  double noise = 0;  // SSD or screened Poisson with the automatic value weight:
+                     // estimate_noise(points) (solvers.h); otherwise 0. The weight of each
+                     // solve is in its SolverStats.
   MemoryBudget budget;
   OutlierReport outliers;  // the points dropped as outliers before the run
   TrimReport trim;         // what the trim cut (trimmed = false: the surface is closed)

@@ -69,11 +69,16 @@ struct LinearSolverOptions {
 
 // Screened Poisson, Eqs. (13)-(14):
 //   [L + alpha l / |X| Phi^T Phi] F = Div N~,
-// with N~ the normals smoothed by a Gaussian kernel, then f <- f - median f(p).
+// with N~ the normals, each weighted by the inverse of its sampling density, smoothed by a
+// Gaussian kernel, then f <- f - median f(p).
 struct PoissonOptions {
-  double alpha = 4.0;  // screening weight: PoissonRecon's default --pointWeight for the
-                       // degree-2 B-splines of [KH13]; 0 gives the original Poisson equation
-                       // [KBH06], made definite by fixing f at one vertex
+  bool screened = true;  // false: the original Poisson equation [KBH06] (no alpha term), made
+                         // definite by fixing f at one vertex
+  double alpha = 0;  // screening weight; 0: ssd_value_weight, from the input's noise, as SSD's
+                     // value weight. PoissonRecon's 4 is far too weak here: its degree-2
+                     // B-splines place a steep indicator accurately, a linear f on tets of
+                     // the sample spacing does not (docs/benchmarks.md, "Poisson's screening")
+  double noise = -1;  // sigma of the automatic alpha; < 0: estimate_noise(points) at each solve
   double kernel_size = 0.0;  // standard deviation of the Gaussian that smooths the normals, in
                              // input units; 0 = kernel_spacing x the mean distance from a
                              // sample to its nearest neighbour. The domain should be at least
@@ -83,7 +88,7 @@ struct PoissonOptions {
                                 // Measured with 1% noise: 1 follows the noise (sphere: max
                                 // error 0.023), 2 and 3 do not (0.011, 0.008)
   bool median_shift = true;  // f <- f - median f(p) so that the zero set passes through the
-                             // samples (§3.5); needed when alpha = 0
+                             // samples (§3.5); needed when not screened
 };
 
 // Smooth signed distance [CT11], Eq. (15):
@@ -181,7 +186,8 @@ struct SolverStats {
   double median_shift = 0;       // the constant subtracted from f (0 when not shifted)
   double eigenvalue = 0;         // spectral: lambda
   double kernel_size = 0;        // Poisson: the kernel standard deviation used, in input units
-  double value_weight = 0;       // SSD: the alpha solved with (ssd_value_weight when automatic)
+  double value_weight = 0;       // SSD and screened Poisson: the alpha solved with
+                                 // (ssd_value_weight when automatic)
 };
 
 class ImplicitSolver {

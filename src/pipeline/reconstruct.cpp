@@ -505,10 +505,18 @@ Result run_stages(const PointSet& points, const ReconstructOptions& options, Pro
   relative.normals = input.normals;
   for (Vec3& p : relative.points) p -= centre;
   ReconstructOptions resolved = relative_to(options, centre);
-  // The input's noise for SSD's automatic value weight, once for all the solves.
+  // The input's noise for the automatic value weight of SSD or of the screened
+  // Poisson solver, once for all the solves.
   SsdOptions& ssd = resolved.solver.ssd;
-  if (resolved.solver.kind == SolverKind::kSsd && ssd.alpha == 0 && ssd.noise < 0)
+  PoissonOptions& poisson = resolved.solver.poisson;
+  const SolverKind kind = resolved.solver.kind;
+  if (kind == SolverKind::kSsd && ssd.alpha == 0 && ssd.noise < 0)
     ssd.noise = estimate_noise(relative);
+  if (kind == SolverKind::kPoisson && poisson.screened && poisson.alpha == 0 && poisson.noise < 0)
+    poisson.noise = estimate_noise(relative);
+  const double noise = kind == SolverKind::kSsd       ? ssd.noise
+                       : kind == SolverKind::kPoisson ? poisson.noise
+                                                      : -1.0;
   Run run(relative, resolved, current, ask, start);
   Result result = [&] {
     switch (resolved.strategy) {
@@ -526,7 +534,7 @@ Result run_stages(const PointSet& points, const ReconstructOptions& options, Pro
   for (Vec3& v : result.mesh.vertices) v += centre;
   result.domain.translate(centre);
   result.outliers = outliers;
-  result.noise = std::max(0.0, ssd.noise);
+  result.noise = std::max(0.0, noise);
   result.normals = normals;
   return result;
 }

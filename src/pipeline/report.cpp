@@ -132,7 +132,7 @@ std::string statistics_table(const Result& result) {
   }
   if (!result.iterations.empty() && result.iterations.back().solver.value_weight > 0) {
     std::snprintf(line, sizeof line,
-                  "SSD value weight alpha %.4g in the final solve (noise estimate %.3g)\n",
+                  "value weight alpha %.4g in the final solve (noise estimate %.3g)\n",
                   result.iterations.back().solver.value_weight, result.noise);
     out << line;
   }

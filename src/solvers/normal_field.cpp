@@ -27,6 +27,26 @@ double mean_spacing(const std::vector<Vec3>& points) {
   return sum / n;
 }
 
+std::vector<double> density_weights(const std::vector<Vec3>& points, double sigma) {
+  const NearestNeighbors tree(points);  // read-only queries, safe in parallel
+  const int n = static_cast<int>(points.size());
+  std::vector<double> density(n, 0.0);
+  tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& r) {
+    for (int i = r.begin(); i < r.end(); ++i) {
+      double sum = 0;  // at least 1: the sample itself
+      for (int q : tree.within(points[i], 3.0 * sigma))
+        sum += std::exp(-(points[q] - points[i]).squaredNorm() / (2.0 * sigma * sigma));
+      density[i] = sum;
+    }
+  });
+  double mean = 0;
+  for (double d : density) mean += d;
+  mean /= n;
+  std::vector<double> weight(n);
+  for (int i = 0; i < n; ++i) weight[i] = mean / density[i];
+  return weight;
+}
+
 std::vector<Vec3> smoothed_normal_field(const TetMesh& mesh, const std::vector<Vec3>& points,
                                         const std::vector<Vec3>& normals, double sigma) {
   const NearestNeighbors samples(points);  // read-only queries, safe in parallel
@@ -40,14 +60,22 @@ std::vector<Vec3> smoothed_normal_field(const TetMesh& mesh, const std::vector<V
       const Vec3 c = (x[0] + x[1] + x[2] + x[3]) / 4.0;
       double spread = 0;
       for (int i = 0; i < 4; ++i) spread += (x[i] - c).squaredNorm();
-      const double variance = sigma * sigma + spread / 60.0;  // per axis
+      // The tet's four-point rule (exact for quadratics), each point's
+      // Gaussian widened by the variance of a quarter of the tet: a kernel as
+      // narrow as the tets near the samples is sampled, not just centred.
+      const double variance = sigma * sigma + spread / 240.0;  // per axis
+      constexpr double a = 0.5854101966249685, b = 0.1381966011250105;
+      Vec3 q[4];
+      for (int i = 0; i < 4; ++i) q[i] = b * (x[0] + x[1] + x[2] + x[3]) + (a - b) * x[i];
       // The tree and the query fix the order of the points found, so the
       // sum is deterministic.
-      const std::vector<int> found = samples.within(c, 3.0 * std::sqrt(variance));
-      const double scale = std::pow(2.0 * M_PI * variance, -1.5);
+      const std::vector<int> found =
+          samples.within(c, 3.0 * std::sqrt(variance) + std::sqrt(spread));
+      const double scale = std::pow(2.0 * M_PI * variance, -1.5) / 4.0;
       Vec3 sum = Vec3::Zero();
       for (int p : found)
-        sum += std::exp(-(points[p] - c).squaredNorm() / (2.0 * variance)) * normals[p];
+        for (int i = 0; i < 4; ++i)
+          sum += std::exp(-(points[p] - q[i]).squaredNorm() / (2.0 * variance)) * normals[p];
       field[t] = scale * sum;
     }
   });

@@ -16,7 +16,7 @@ class PoissonSolver final : public ImplicitSolver {
  public:
   PoissonSolver(const PoissonOptions& options, const LinearSolverOptions& linear)
       : options_(options), linear_(linear) {
-    if (!(options.alpha >= 0)) throw InputError("Poisson solver: alpha must be >= 0");
+    if (!(options.alpha >= 0)) throw InputError("Poisson solver: alpha must be >= 0 (0: from the noise)");
     if (!(options.kernel_size >= 0)) throw InputError("Poisson solver: kernel size must be >= 0");
     if (options.kernel_size == 0 && !(options.kernel_spacing > 0))
       throw InputError("Poisson solver: kernel spacing must be > 0");
@@ -35,7 +35,10 @@ class PoissonSolver final : public ImplicitSolver {
 
     // Right-hand side Div N~ := G^T M_T n~, the integrated divergence (with
     // the sign that makes Eq. (14) the normal equations of Eq. (13)).
-    const std::vector<Vec3> field = smoothed_normal_field(p.mesh, points.points, p.normals, sigma);
+    std::vector<Vec3> normals = p.normals;
+    const std::vector<double> weight = density_weights(points.points, sigma);
+    for (std::size_t i = 0; i < normals.size(); ++i) normals[i] *= weight[i];
+    const std::vector<Vec3> field = smoothed_normal_field(p.mesh, points.points, normals, sigma);
     const Eigen::VectorXd volume = tet_volumes(p.mesh);
     std::vector<Vec3> weighted(field.size());
     for (std::size_t t = 0; t < field.size(); ++t) weighted[t] = volume[static_cast<Eigen::Index>(t)] * field[t];
@@ -45,8 +48,13 @@ class PoissonSolver final : public ImplicitSolver {
     SparseMatrix A = cotangent_laplacian(p.mesh);
     const double l00 = A.coeff(0, 0);
     poll();
-    if (options_.alpha > 0) {
-      const double w = options_.alpha * p.length / static_cast<double>(p.num_points);
+    if (options_.screened) {
+      double alpha = options_.alpha;
+      if (alpha == 0)
+        alpha = ssd_value_weight(options_.noise >= 0 ? options_.noise : estimate_noise(points),
+                                 p.length);
+      stats_.value_weight = alpha;
+      const double w = alpha * p.length / static_cast<double>(p.num_points);
       const SparseMatrix values = gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
       if (!add_into(A, values, w)) A += w * values;
     } else {
