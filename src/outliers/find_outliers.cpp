@@ -44,7 +44,8 @@ std::vector<char> find_outliers(const std::vector<Vec3>& points, const OutlierOp
   const detail::NearestNeighbors tree(points);
   std::vector<int> neighbours(n * k);
   std::vector<double> spacing(n);  // mean distance to the k nearest other points
-  detail::polled_parallel_for(n, [&](std::size_t i) {
+  detail::polled_parallel_for(n, [&](std::size_t s) {
+    const auto i = static_cast<std::size_t>(tree.spatial_order()[s]);  // the tree's order: cached paths
     const std::vector<int> nearest = tree.query(points[i], options.neighbors + 1);
     std::size_t found = 0;
     double sum = 0;
