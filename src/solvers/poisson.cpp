@@ -16,7 +16,8 @@ class PoissonSolver final : public ImplicitSolver {
  public:
   PoissonSolver(const PoissonOptions& options, const LinearSolverOptions& linear)
       : options_(options), linear_(linear) {
-    if (!(options.alpha >= 0)) throw InputError("Poisson solver: alpha must be >= 0 (0: from the noise)");
+    if (!(options.alpha >= 0))
+      throw InputError("Poisson solver: alpha must be >= 0 (0: from the noise)");
     if (!(options.kernel_size >= 0)) throw InputError("Poisson solver: kernel size must be >= 0");
     if (options.kernel_size == 0 && !(options.kernel_spacing > 0))
       throw InputError("Poisson solver: kernel spacing must be > 0");
