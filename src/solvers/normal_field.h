@@ -13,13 +13,13 @@ double mean_spacing(const std::vector<Vec3>& points);
 
 // n~, constant in each tet: the average over tet t of
 //   n~(x) = sum_p K_sigma(x - p) n_p,
-// K_sigma the unit-mass Gaussian of standard deviation sigma, by the tet's
-// four-point rule with each point's Gaussian widened by the variance of a
-// quarter of the tet (the uniform distribution's): exact in the first two
-// moments, it keeps every normal's contribution when tets are coarser than
-// the kernel (no aliasing) and samples a kernel as narrow as the tets near
-// the samples instead of reading it at the centroid alone (fandisk_clean's
-// Chamfer-L1 0.245 -> 0.198). The kernel is cut at 3 standard deviations.
+// K_sigma the unit-mass Gaussian of standard deviation sigma. In a tet no
+// larger than the kernel, by the tet's four-point rule, each point's
+// Gaussian widened by the variance of a quarter of the tet; in a larger one,
+// by one Gaussian at the centroid widened by the tet's whole variance (the
+// uniform distribution's). Exact in the first two moments, it keeps every
+// normal's contribution when tets are coarser than the kernel (no aliasing).
+// The kernel is cut at 3 standard deviations.
 std::vector<Vec3> smoothed_normal_field(const TetMesh& mesh, const std::vector<Vec3>& points,
                                         const std::vector<Vec3>& normals, double sigma);
 
