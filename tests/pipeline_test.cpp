@@ -394,16 +394,19 @@ TEST(Pipeline, SameSeedGivesIdenticalOutput) {
 
 TEST(Pipeline, OneThreadGivesTheSameOutputAsAll) {
   // Every parallel sum (TBB assembly, the multigrid's products and CG, here
-  // on every domain of 500 vertices or more) runs in an order fixed by the mesh.
+  // on every domain of 500 vertices or more, Poisson's sample spacing) runs
+  // in an order fixed by the mesh or the samples, for every solver.
   const PointSet input = test::sample_ellipsoid(1200, Vec3(1.0, 0.7, 0.5));
-  ReconstructOptions o = fast_options(SolverKind::kSsd, 0.12);
-  o.solver.linear.direct_below = 500;
-  o.solver.linear.coarsest_size = 200;
-  const Result all = reconstruct(input, o);
-  o.threads = 1;
-  const Result one = reconstruct(input, o);
-  EXPECT_EQ(all.mesh.vertices, one.mesh.vertices);
-  EXPECT_EQ(all.mesh.faces, one.mesh.faces);
+  for (SolverKind kind : {SolverKind::kSsd, SolverKind::kPoisson}) {
+    ReconstructOptions o = fast_options(kind, 0.12);
+    o.solver.linear.direct_below = 500;
+    o.solver.linear.coarsest_size = 200;
+    const Result all = reconstruct(input, o);
+    o.threads = 1;
+    const Result one = reconstruct(input, o);
+    EXPECT_EQ(all.mesh.vertices, one.mesh.vertices) << to_string(kind);
+    EXPECT_EQ(all.mesh.faces, one.mesh.faces) << to_string(kind);
+  }
 }
 
 // Georeferenced coordinates: the run works relative to the input's centre,

@@ -7,30 +7,27 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <numeric>
 #include <cmath>
 
 namespace pdd::detail {
 
-double mean_spacing(const std::vector<Vec3>& points) {
+double mean_spacing(const std::vector<Vec3>& points, const NearestNeighbors& nn) {
   if (points.size() < 2) return 0;
-  const NearestNeighbors nn(points);
   const int n = static_cast<int>(points.size());
-  const double sum = tbb::parallel_reduce(
-      tbb::blocked_range<int>(0, n), 0.0,
-      [&](const tbb::blocked_range<int>& r, double s) {
-        for (int i = r.begin(); i < r.end(); ++i) {
-          const std::vector<int> k = nn.query(points[i], 2);
-          const int other = k[0] == i ? k[1] : k[0];
-          s += (points[other] - points[i]).norm();
-        }
-        return s;
-      },
-      std::plus<double>());
-  return sum / n;
+  // Each distance in its own slot, summed in order: a parallel reduction's
+  // order, and so its rounding, would follow the threads' timing.
+  std::vector<double> distance(n);
+  polled_parallel_for(n, [&](int s) {
+    const int i = nn.spatial_order()[s];  // the tree's order: cached paths
+    const std::vector<int> k = nn.query(points[i], 2);
+    distance[i] = (points[k[0] == i ? k[1] : k[0]] - points[i]).norm();
+  });
+  return std::accumulate(distance.begin(), distance.end(), 0.0) / n;
 }
 
-std::vector<double> density_weights(const std::vector<Vec3>& points, double sigma) {
-  const NearestNeighbors tree(points);  // read-only queries, safe in parallel
+std::vector<double> density_weights(const std::vector<Vec3>& points, const NearestNeighbors& tree,
+                                    double sigma) {
   const int n = static_cast<int>(points.size());
   std::vector<double> density(n, 0.0);
   polled_parallel_for(n, [&](int s) {
@@ -49,8 +46,8 @@ std::vector<double> density_weights(const std::vector<Vec3>& points, double sigm
 }
 
 std::vector<Vec3> smoothed_normal_field(const TetMesh& mesh, const std::vector<Vec3>& points,
+                                        const NearestNeighbors& samples,
                                         const std::vector<Vec3>& normals, double sigma) {
-  const NearestNeighbors samples(points);  // read-only queries, safe in parallel
 
   const int nt = static_cast<int>(mesh.tets.size());
   std::vector<Vec3> field(nt, Vec3::Zero());

@@ -29,17 +29,19 @@ class PoissonSolver final : public ImplicitSolver {
     stats_ = SolverStats();
     const Problem p = make_problem(domain, points, "Poisson solver",
                                    "the Poisson solver needs oriented normals (Eq. 13)");
+    const NearestNeighbors tree(points.points);  // the samples' one tree for the three below
     const double sigma = options_.kernel_size > 0
                              ? options_.kernel_size
-                             : options_.kernel_spacing * mean_spacing(points.points);
+                             : options_.kernel_spacing * mean_spacing(points.points, tree);
     if (!(sigma > 0)) throw InputError("Poisson solver: the normal kernel size is zero");
 
     // Right-hand side Div N~ := G^T M_T n~, the integrated divergence (with
     // the sign that makes Eq. (14) the normal equations of Eq. (13)).
     std::vector<Vec3> normals = p.normals;
-    const std::vector<double> weight = density_weights(points.points, sigma);
+    const std::vector<double> weight = density_weights(points.points, tree, sigma);
     for (std::size_t i = 0; i < normals.size(); ++i) normals[i] *= weight[i];
-    const std::vector<Vec3> field = smoothed_normal_field(p.mesh, points.points, normals, sigma);
+    const std::vector<Vec3> field =
+        smoothed_normal_field(p.mesh, points.points, tree, normals, sigma);
     const Eigen::VectorXd volume = tet_volumes(p.mesh);
     std::vector<Vec3> weighted(field.size());
     for (std::size_t t = 0; t < field.size(); ++t) weighted[t] = volume[static_cast<Eigen::Index>(t)] * field[t];
