@@ -124,6 +124,9 @@ void reconstruct(ReconstructArgs& args) {
     if (r.components > 0)
       std::cout << "; " << r.components << " " << kind << " component"
                 << (r.components == 1 ? "" : "s") << " of " << r.faces << " triangles removed";
+  if (last.handles.handles > 0)
+    std::cout << "; " << last.handles.handles << " unsupported handle"
+              << (last.handles.handles == 1 ? "" : "s") << " cut";
   std::cout << ")\n";
 }
 

@@ -79,6 +79,36 @@ RemovedComponents remove_unsupported_components(TriangleMesh& mesh,
                                                 const std::vector<Vec3>& samples,
                                                 int min_samples);
 
+// Handles of the output that its samples contradict: a tunnel through a wall
+// thinner than the sample spacing, a bridge across a gap narrower than it.
+struct HandleOptions {
+  bool enabled = true;
+  double support_degrees = 45;  // a face is supported by a sample whose normal is this close to its own
+  double radius_spacings = 3;   // ... within this many average sample spacings of its centroid
+  int band_rings = 2;           // rings of faces around a cluster of unsupported faces cut away
+};
+
+struct CutHandles {
+  int handles = 0;  // handles cut (the genus falls by as many)
+  int faces = 0;    // the triangles of their waists, replaced by two caps each
+};
+
+// Finds the clusters of faces that lie near samples none of whose normals
+// agrees with theirs (by the options' angle and radius), grows each by
+// band_rings rings of faces, and where that band is an annulus whose removal
+// leaves the mesh in as many pieces (the waist of a handle, not of a limb),
+// removes it and fills the two holes (CGAL, refined and faired). Samples
+// without normals: nothing is done. Not in the paper.
+// Throws std::invalid_argument if an option is out of range.
+CutHandles cut_unsupported_handles(TriangleMesh& mesh, const PointSet& samples,
+                                   const HandleOptions& options = {});
+
+// Cuts the closed mesh along every cycle of three edges that bounds no face
+// and does not separate it (a handle pinched to one triangle's worth, below
+// any resolution; the clean-up's collapses can leave one) and closes both
+// sides with a triangle. Returns how many; the genus falls by as many.
+int cut_triangle_waists(TriangleMesh& mesh);
+
 struct CleanupOptions {
   double max_dihedral_degrees = 30;  // only where neighbouring triangles turn by at most this
   double needle_angle_degrees = 20;  // triangles with a smaller angle and a shortest edge at

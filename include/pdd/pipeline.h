@@ -96,6 +96,8 @@ struct ReconstructOptions {
                                    // or to a tenth of the mesh's points per area, are removed:
                                    // blobs and bubbles around stray points (contour.h,
                                    // remove_unsupported_components); 0: all kept
+  HandleOptions handles;       // spurious handles cut from the final surface (contour.h,
+                               // cut_unsupported_handles); handles.enabled = false keeps them
   TrimOptions trim;            // distance 0 (the default): the closed surface; otherwise cut to
                                // the samples' support after the small components went (contour.h)
   // The point attributes the output's vertices carry (contour.h, interpolate_attributes):
@@ -158,6 +160,7 @@ struct IterationStats {
   RemovedComponents small_components;
   RemovedComponents open_components;
   RemovedComponents unsupported_components;
+  CutHandles handles;
   CleanupReport cleanup;
   double seconds_cleanup = 0;
 };

@@ -82,6 +82,7 @@ def reconstruct(
     trim_holes: float = 30.0,
     trim_islands: float = 10.0,
     attributes: str = "colors",
+    keep_handles: bool = False,
     no_cleanup: bool = False,
     cleanup_dihedral: float = 30.0,
     threads: int = 0,

@@ -22,6 +22,7 @@
 #include "contour/angles.h"
 #include "contour/components.h"
 #include "contour/rim.h"
+#include "contour/spacing.h"
 
 namespace pdd {
 
@@ -29,34 +30,6 @@ namespace {
 
 using detail::find_root;
 using detail::singletons;
-
-// Each sample's local spacing: the mean nearest-neighbour distance over its
-// `k` nearest samples; and the samples' average spacing (mean nearest-neighbour distance).
-struct Spacing {
-  std::vector<double> local;
-  double average = 0;
-};
-
-Spacing sample_spacing(const std::vector<Vec3>& samples, const detail::NearestNeighbors& tree,
-                       int k) {
-  const std::size_t n = samples.size();
-  std::vector<double> nearest(n, 0.0);
-  tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
-    const std::vector<int> two = tree.query(samples[i], 2);
-    for (int j : two)
-      if (static_cast<std::size_t>(j) != i) nearest[i] = (samples[j] - samples[i]).norm();
-  });
-  Spacing s;
-  s.local.resize(n);
-  tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
-    const std::vector<int> around = tree.query(samples[i], k);
-    double sum = 0;
-    for (int j : around) sum += nearest[j];
-    s.local[i] = sum / static_cast<double>(around.size());
-  });
-  s.average = std::accumulate(nearest.begin(), nearest.end(), 0.0) / static_cast<double>(n);
-  return s;
-}
 
 // Undirected edges of the mesh (a < b), sorted, and each vertex's neighbours.
 std::vector<std::vector<int>> vertex_neighbours(const TriangleMesh& mesh) {
@@ -175,7 +148,7 @@ TrimReport trim_to_samples(TriangleMesh& mesh, const std::vector<Vec3>& samples,
   // g at each vertex: its distance to the nearest sample in that sample's
   // local spacings, then smoothed over the mesh so that the cut is a smooth curve.
   const detail::NearestNeighbors tree(samples);
-  const Spacing spacing = sample_spacing(samples, tree, 8);
+  const detail::Spacing spacing = detail::sample_spacing(samples, tree, 8);
   report.spacing = spacing.average;
   const std::size_t n = mesh.vertices.size();
   // The distance inside a triangle exceeds that at its corners where it runs

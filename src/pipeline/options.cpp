@@ -233,6 +233,15 @@ std::vector<OptionSpec> make_specs() {
                [](ReconstructOptions& o, const std::string& v) {
                  o.attributes = parse_attribute_selection(v);
                }});
+  s.push_back({"keep-handles", Kind::kFlag,
+               "Keep the handles of the output that its samples contradict (tunnels through "
+               "walls, bridges across gaps thinner than the sample spacing), which are "
+               "otherwise cut and capped",
+               {}, d.handles.enabled ? "false" : "true",
+               [](ReconstructOptions& o, const std::string& v) {
+                 if (v != "true" && v != "false") reject("keep-handles", "true or false", v);
+                 o.handles.enabled = v == "false";
+               }});
   s.push_back({"no-cleanup", Kind::kFlag,
                "Output the marching-tetrahedra isosurface as it is, without the edge flips and "
                "needle collapses of the final clean-up",

@@ -305,10 +305,13 @@ class Run {
     stats.unsupported_components =
         remove_unsupported_components(result_.mesh, points_.points, options_.min_component_samples);
     detail::poll();
+    stats.handles = cut_unsupported_handles(result_.mesh, points_, options_.handles);
+    detail::poll();
     result_.trim = trim_to_samples(result_.mesh, points_.points, options_.trim);
     detail::poll();
     if (options_.cleanup)
       stats.cleanup = cleanup_isosurface(result_.mesh, options_.cleanup_options);
+    if (options_.handles.enabled) stats.handles.handles += cut_triangle_waists(result_.mesh);
     stats.seconds_cleanup = seconds_since(t);
     stats.isovertices = result_.mesh.vertices.size();
     stats.triangles = result_.mesh.faces.size();

@@ -97,6 +97,8 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
         << ", \"removed_open_component_faces\": " << s.open_components.faces
         << ", \"removed_unsupported_components\": " << s.unsupported_components.components
         << ", \"removed_unsupported_component_faces\": " << s.unsupported_components.faces
+        << ", \"cut_handles\": " << s.handles.handles
+        << ", \"cut_handle_faces\": " << s.handles.faces
         << ", \"cleanup_flips\": " << s.cleanup.flips
         << ", \"cleanup_collapses\": " << s.cleanup.collapses
         << ", \"cleanup_moves\": " << s.cleanup.moves << "}";
@@ -129,6 +131,11 @@ std::string statistics_table(const Result& result) {
                       r.components, kind, r.components == 1 ? "" : "s", r.faces);
         out << line;
       }
+    if (last.handles.handles > 0) {
+      std::snprintf(line, sizeof line, "cut %d unsupported handle%s (%d triangles, capped)\n",
+                    last.handles.handles, last.handles.handles == 1 ? "" : "s", last.handles.faces);
+      out << line;
+    }
   }
   if (!result.iterations.empty() && result.iterations.back().solver.value_weight > 0) {
     std::snprintf(line, sizeof line,

@@ -1,0 +1,30 @@
+// The samples' spacing (spacing.h).
+#include "contour/spacing.h"
+
+#include <tbb/parallel_for.h>
+
+#include <numeric>
+
+namespace pdd::detail {
+
+Spacing sample_spacing(const std::vector<Vec3>& samples, const NearestNeighbors& tree, int k) {
+  const std::size_t n = samples.size();
+  std::vector<double> nearest(n, 0.0);
+  tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+    const std::vector<int> two = tree.query(samples[i], 2);
+    for (int j : two)
+      if (static_cast<std::size_t>(j) != i) nearest[i] = (samples[j] - samples[i]).norm();
+  });
+  Spacing s;
+  s.local.resize(n);
+  tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+    const std::vector<int> around = tree.query(samples[i], k);
+    double sum = 0;
+    for (int j : around) sum += nearest[j];
+    s.local[i] = sum / static_cast<double>(around.size());
+  });
+  s.average = std::accumulate(nearest.begin(), nearest.end(), 0.0) / static_cast<double>(n);
+  return s;
+}
+
+}  // namespace pdd::detail

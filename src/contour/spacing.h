@@ -1,0 +1,21 @@
+// The samples' spacing, private to the contour stage (the trim, the handle cut).
+#pragma once
+
+#include <pdd/types.h>
+
+#include <vector>
+
+#include "common/nearest_neighbors.h"
+
+namespace pdd::detail {
+
+// Each sample's local spacing: the mean nearest-neighbour distance over its
+// `k` nearest samples; and the samples' average spacing (mean nearest-neighbour distance).
+struct Spacing {
+  std::vector<double> local;
+  double average = 0;
+};
+
+Spacing sample_spacing(const std::vector<Vec3>& samples, const NearestNeighbors& tree, int k);
+
+}  // namespace pdd::detail
