@@ -614,7 +614,8 @@ TEST(Pipeline, UniformOutliersAreDroppedCountedAndLeaveOneSurface) {
   EXPECT_GT(surface_topology(kept.mesh).components, 1u);
 }
 
-TEST(Pipeline, ATrimmedHemisphereIsOneOpenPieceNearTheSamples) {
+// The points of a 3000-point sampling of the unit sphere above z = 0, with their normals.
+PointSet upper_hemisphere() {
   PointSet input;
   const PointSet sphere = test::sample_sphere(3000);
   for (std::size_t i = 0; i < sphere.size(); ++i)
@@ -622,6 +623,11 @@ TEST(Pipeline, ATrimmedHemisphereIsOneOpenPieceNearTheSamples) {
       input.points.push_back(sphere.points[i]);
       input.normals.push_back(sphere.normals[i]);
     }
+  return input;
+}
+
+TEST(Pipeline, ATrimmedHemisphereIsOneOpenPieceNearTheSamples) {
+  const PointSet input = upper_hemisphere();
   ReconstructOptions o = fast_options(SolverKind::kSsd, 0.08);
   o.trim.distance = 2;
   const Result r = reconstruct(input, o);
@@ -646,6 +652,41 @@ TEST(Pipeline, ATrimmedHemisphereIsOneOpenPieceNearTheSamples) {
   EXPECT_LT(q.fraction_below_20, closed.fraction_below_20 + 0.01);
   EXPECT_GT(q.mean_min_angle, closed.mean_min_angle - 1.5);
   EXPECT_EQ(r.iterations.back().triangles, r.mesh.faces.size());
+}
+
+// Pairs of points on the sphere far below a scanned hemisphere's rim: the
+// outlier test drops them from the solve, but the closed surface passes
+// through them, and the trim keeps it there (the points to surface distance
+// of a trimmed run is that of the closed run; issue 16).
+TEST(Pipeline, TheTrimKeepsTheSurfaceThroughPointsTheOutlierTestDropped) {
+  PointSet input = upper_hemisphere();
+  std::vector<Vec3> pairs;
+  for (int k = 0; k < 4; ++k)
+    for (const double da : {0.0, 0.05}) {
+      const double a = k * M_PI / 2 + da;
+      pairs.push_back(Vec3(std::cos(a), std::sin(a), -0.5).normalized());
+      input.points.push_back(pairs.back());
+      input.normals.push_back(pairs.back());
+    }
+  ReconstructOptions o = fast_options(SolverKind::kSsd, 0.08);
+  const Result closed = reconstruct(input, o);
+  o.trim.distance = 2;
+  const Result trimmed = reconstruct(input, o);
+  EXPECT_GE(trimmed.outliers.removed, 4u);
+  auto to_vertices = [](const TriangleMesh& mesh, const Vec3& p) {
+    double nearest = 1e9;
+    for (const Vec3& v : mesh.vertices) nearest = std::min(nearest, (v - p).norm());
+    return nearest;
+  };
+  int through = 0;
+  for (const Vec3& p : pairs) {
+    const double before = to_vertices(closed.mesh, p), after = to_vertices(trimmed.mesh, p);
+    std::cout << "closed " << before << ", trimmed " << after << "\n";
+    if (before > trimmed.trim.spacing) continue;  // the closed surface misses it
+    ++through;
+    EXPECT_LT(after, before + 0.08);  // within an edge of where it was
+  }
+  EXPECT_GT(through, 0);
 }
 
 TEST(Pipeline, ColoursOfTheSamplesReachTheOutputVertices) {

@@ -137,25 +137,58 @@ TEST(Trim, ASmallHoleStaysClosedAndALargeOneOpens) {
   EXPECT_TRUE(surface_topology(mesh).manifold);
 }
 
-TEST(Trim, IslandsBelowTheirSizeAreDropped) {
-  // Samples on the upper cap and on a small patch near the south pole: the
-  // patch's piece is an island.
-  const std::vector<Vec3> samples = sphere_samples(8000, [](const Vec3& p) {
-    return p.z() > 0.3 || (p - Vec3(0, 0, -1)).norm() < 0.08;
-  });
+// The distance from `p` to the nearest vertex of `mesh`.
+double to_vertices(const TriangleMesh& mesh, const Vec3& p) {
+  double nearest = 1e9;
+  for (const Vec3& v : mesh.vertices) nearest = std::min(nearest, (v - p).norm());
+  return nearest;
+}
+
+TEST(Trim, IslandsThatFewSamplesLieOnAreDroppedAndScannedOnesKept) {
+  // Samples on the upper cap, on a small patch near the south pole (a few
+  // dozen samples: scanned surface) and one lone sample on the equator's far
+  // side (a stray's disc).
+  std::vector<Vec3> samples = sphere_samples(
+      8000, [](const Vec3& p) { return p.z() > 0.3 || (p - Vec3(0, 0, -1)).norm() < 0.08; });
+  const Vec3 lone = Vec3(0, -1, -0.3).normalized();
+  samples.push_back(lone);
   TrimOptions options;
   options.distance = 2;
   options.holes = 0;
-  TriangleMesh with = test::sphere_mesh(5);
+  TriangleMesh all = test::sphere_mesh(5);
   options.islands = 0;
-  trim_to_samples(with, samples, options);
-  EXPECT_EQ(surface_topology(with).components, 2u);
-  TriangleMesh without = test::sphere_mesh(5);
-  options.islands = 10;
-  const TrimReport r = trim_to_samples(without, samples, options);
-  EXPECT_EQ(surface_topology(without).components, 1u);
+  trim_to_samples(all, samples, options);
+  EXPECT_EQ(surface_topology(all).components, 3u);
+  TriangleMesh mesh = test::sphere_mesh(5);
+  options.islands = 15;  // both pieces are smaller: the samples on them decide
+  const TrimReport r = trim_to_samples(mesh, samples, options);
+  EXPECT_EQ(surface_topology(mesh).components, 2u);
   EXPECT_EQ(r.islands.components, 1);
   EXPECT_GT(r.islands.faces, 0);
+  EXPECT_GT(to_vertices(mesh, lone), 0.3);             // the lone sample's disc went
+  EXPECT_LT(to_vertices(mesh, Vec3(0, 0, -1)), 0.03);  // the patch stayed
+}
+
+// A hemisphere scanned with a few pairs of samples below its rim, each pair
+// far from the rest (a scan's sparse edge): the trim keeps the surface under
+// them, as the closed surface had it, instead of cutting it as an island.
+TEST(Trim, SparseSamplesBeyondTheRimKeepTheirSurface) {
+  std::vector<Vec3> samples = sphere_samples(6000, [](const Vec3& p) { return p.z() > 0; });
+  std::vector<Vec3> sparse;
+  for (int k = 0; k < 6; ++k) {
+    const double a = k * M_PI / 3;
+    for (const double da : {0.0, 0.03})
+      sparse.push_back(Vec3(std::cos(a + da), std::sin(a + da), -0.6).normalized());
+  }
+  samples.insert(samples.end(), sparse.begin(), sparse.end());
+  TriangleMesh mesh = test::sphere_mesh(5);
+  TrimOptions options;
+  options.distance = 2;
+  const TrimReport r = trim_to_samples(mesh, samples, options);
+  for (const Vec3& p : sparse) EXPECT_LT(to_vertices(mesh, p), 0.03);  // an edge
+  EXPECT_EQ(r.islands.components, 0);
+  EXPECT_EQ(surface_topology(mesh).components, 7u);
+  EXPECT_TRUE(surface_topology(mesh).manifold);
 }
 
 TEST(Trim, OffLeavesTheMeshAndBadOptionsThrow) {

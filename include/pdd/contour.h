@@ -156,12 +156,14 @@ std::vector<Attribute> interpolate_attributes(const PointSet& samples,
 // unseen side), as an open manifold mesh.
 struct TrimOptions {
   // Keep the surface within this many local sample spacings of a sample (the
-  // spacing: the mean nearest-neighbour distance of the sample's 8 nearest); 0: no trim.
+  // spacing: the mean nearest-neighbour distance of the sample's 8 nearest, at
+  // most twice the average); 0: no trim.
   double distance = 0;
   // Unsupported regions less than this many average spacings across are a
   // scan's gaps: they stay closed.
   double holes = 30;
-  // Pieces the cut leaves that are less than this many average spacings across are dropped.
+  // Pieces the cut leaves that are less than this many average spacings across
+  // and that fewer than 2 samples have as their nearest piece are dropped.
   double islands = 10;
 };
 
@@ -176,8 +178,8 @@ struct TrimReport {
 
 // Cuts `mesh` along the iso-line g = options.distance of g = a vertex's
 // distance to its nearest sample in that sample's local spacing (the largest
-// of its own and its edges' midpoints', smoothed over the mesh), through the
-// triangles: crossed edges get a new vertex, vertices near the line take it
+// of its own and its edges' midpoints', smoothed over the mesh; each sample's
+// nearest vertex keeps its own distance), through the triangles: crossed edges get a new vertex, vertices near the line take it
 // through themselves (snapped) so that no sliver is made, and the parts where
 // g is larger are removed, but for the small unsupported regions (`holes`);
 // then small pieces (`islands`) go, and the rim is smoothed (ears removed,

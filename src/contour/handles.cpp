@@ -100,7 +100,7 @@ struct Adjacency {
 
 // The faces of `in` (a mask) in groups connected through shared edges,
 // each group in increasing face order, groups by their first face.
-std::vector<std::vector<int>> edge_connected(const TriangleMesh& mesh, const Adjacency& adj,
+std::vector<std::vector<int>> edge_connected(const Adjacency& adj,
                                              const std::vector<char>& in) {
   std::vector<std::vector<int>> groups;
   std::vector<char> seen(in.size(), 0);
@@ -366,7 +366,7 @@ CutHandles cut_unsupported_handles(TriangleMesh& mesh, const PointSet& samples,
   detail::poll();
   const Adjacency adj(mesh);
   std::vector<char> all(mesh.faces.size(), 1);
-  const std::size_t pieces = edge_connected(mesh, adj, all).size();
+  const std::size_t pieces = edge_connected(adj, all).size();
 
   // A band of faces that is an annulus whose removal leaves the mesh in as
   // many pieces is a handle's waist.
@@ -390,7 +390,7 @@ CutHandles cut_unsupported_handles(TriangleMesh& mesh, const PointSet& samples,
     if (cut) {
       std::vector<char> rest(mesh.faces.size(), 0);
       for (std::size_t k = 0; k < rest.size(); ++k) rest[k] = !removed[k] && !in_band[k];
-      cut = edge_connected(mesh, adj, rest).size() == pieces;  // otherwise it separates: a limb
+      cut = edge_connected(adj, rest).size() == pieces;  // otherwise it separates: a limb
     }
     for (int k : band) {
       in_band[k] = 0;
@@ -403,7 +403,7 @@ CutHandles cut_unsupported_handles(TriangleMesh& mesh, const PointSet& samples,
   };
   // The waists the samples contradict: clusters of unsupported faces, largest
   // first (ties by their first face), each grown into a band.
-  std::vector<std::vector<int>> clusters = edge_connected(mesh, adj, unsupported);
+  std::vector<std::vector<int>> clusters = edge_connected(adj, unsupported);
   std::stable_sort(clusters.begin(), clusters.end(),
                    [](const auto& a, const auto& b) { return a.size() > b.size(); });
   for (const std::vector<int>& cluster : clusters) {

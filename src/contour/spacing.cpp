@@ -3,6 +3,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <numeric>
 
 namespace pdd::detail {
@@ -24,6 +25,7 @@ Spacing sample_spacing(const std::vector<Vec3>& samples, const NearestNeighbors&
     s.local[i] = sum / static_cast<double>(around.size());
   });
   s.average = std::accumulate(nearest.begin(), nearest.end(), 0.0) / static_cast<double>(n);
+  for (double& local : s.local) local = std::min(local, 2 * s.average);
   return s;
 }
 

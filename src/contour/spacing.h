@@ -10,7 +10,9 @@
 namespace pdd::detail {
 
 // Each sample's local spacing: the mean nearest-neighbour distance over its
-// `k` nearest samples; and the samples' average spacing (mean nearest-neighbour distance).
+// `k` nearest samples, at most twice the average (a lone sample's own distance
+// to the rest measures its isolation, not the scan's density, and would widen
+// its reach with it); and the samples' average spacing (mean nearest-neighbour distance).
 struct Spacing {
   std::vector<double> local;
   double average = 0;

@@ -186,6 +186,19 @@ TrimReport trim_to_samples(TriangleMesh& mesh, const std::vector<Vec3>& samples,
     }
     g = std::move(smoothed);
   }
+  // The midpoints and the smoothing raise g by about an edge over the
+  // samples' distance: around a lone sample whose reach is a few edges (a
+  // scan's sparse edge) they lift the whole disc over T. Each sample's
+  // nearest vertex keeps its own distance, so that its foot stays on the surface.
+  {
+    const detail::NearestNeighbors on_mesh(mesh.vertices);
+    std::vector<int> foot(samples.size());
+    tbb::parallel_for(std::size_t(0), samples.size(),
+                      [&](std::size_t j) { foot[j] = on_mesh.query(samples[j], 1)[0]; });
+    for (std::size_t j = 0; j < samples.size(); ++j)
+      g[foot[j]] =
+          std::min(g[foot[j]], (mesh.vertices[foot[j]] - samples[j]).norm() / spacing.local[j]);
+  }
   const double T = options.distance;
   std::vector<char> state(n);
   for (std::size_t v = 0; v < n; ++v) state[v] = g[v] < T ? kIn : kOut;
@@ -294,13 +307,29 @@ TrimReport trim_to_samples(TriangleMesh& mesh, const std::vector<Vec3>& samples,
     }
   }
 
-  // Islands: pieces of the cut surface less than `islands` spacings across.
-  {
+  // Islands: pieces of the cut surface less than `islands` spacings across
+  // that fewer than kIslandSamples samples have as their nearest piece (a
+  // stray's disc, a sheet behind a thin wall). A small piece that more samples
+  // lie on is scanned surface (a scan's sparse edge): dropping it would leave
+  // those samples far from the surface.
+  if (!cut.faces.empty()) {
+    constexpr int kIslandSamples = 2;
     const detail::Components c = detail::components(cut);
     const std::vector<Eigen::AlignedBox3d> box = detail::component_boxes(cut, c);
+    std::vector<char> small(cut.vertices.size(), 0);
+    for (std::size_t r = 0; r < small.size(); ++r)
+      small[r] = c.faces[r] > 0 && box[r].diagonal().norm() < options.islands * spacing.average;
+    std::vector<int> support(cut.vertices.size(), 0);
+    if (std::find(small.begin(), small.end(), 1) != small.end()) {
+      const detail::NearestNeighbors on_cut(cut.vertices);  // all used: made by the faces
+      std::vector<int> nearest_root(samples.size());
+      tbb::parallel_for(std::size_t(0), samples.size(), [&](std::size_t i) {
+        nearest_root[i] = c.root_of[on_cut.query(samples[i], 1)[0]];
+      });
+      for (int r : nearest_root) ++support[r];
+    }
     std::vector<char> drop(cut.vertices.size(), 0);
-    for (std::size_t r = 0; r < drop.size(); ++r)
-      drop[r] = c.faces[r] > 0 && box[r].diagonal().norm() < options.islands * spacing.average;
+    for (std::size_t r = 0; r < drop.size(); ++r) drop[r] = small[r] && support[r] < kIslandSamples;
     report.islands = detail::remove_marked(cut, c, drop);
   }
   smooth_boundary(cut);

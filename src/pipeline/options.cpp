@@ -211,7 +211,7 @@ std::vector<OptionSpec> make_specs() {
       [](ReconstructOptions& o) -> int& { return o.min_component_samples; }, 0, 1000000000));
   s.push_back(number(
       "trim",
-      "Keep only the surface within this many local sample spacings of the samples: an open "
+      "Keep only the surface within this many local sample spacings of the input points: an open "
       "mesh of what was scanned, cut along a smooth curve, instead of a closed surface that "
       "invents the unseen sides (0: closed; 2 suits most scans)",
       [](ReconstructOptions& o) -> double& { return o.trim.distance; }, 0, true, 100));
@@ -223,7 +223,7 @@ std::vector<OptionSpec> make_specs() {
   s.push_back(number(
       "trim-islands",
       "With --trim: pieces of the trimmed surface less than this many average sample spacings "
-      "across are dropped",
+      "across that fewer than 2 input points lie on are dropped",
       [](ReconstructOptions& o) -> double& { return o.trim.islands; }, 0, true, 1e9));
   s.push_back({"attributes", Kind::kText,
                "Point attributes the output's vertices carry, interpolated from the nearest "

@@ -143,9 +143,11 @@ class Run {
  public:
   // `current` is where the run is, sent by `ask` (the progress callback, also
   // called from inside the stages); times are counted from `start`.
-  Run(const PointSet& points, const ReconstructOptions& options, Progress& current,
-      const std::function<bool()>& ask, Clock::time_point start)
+  Run(const PointSet& points, const std::vector<Vec3>& trim_samples,
+      const ReconstructOptions& options, Progress& current, const std::function<bool()>& ask,
+      Clock::time_point start)
       : points_(points),
+        trim_samples_(trim_samples),
         current_(current),
         ask_(ask),
         options_(options),
@@ -307,7 +309,7 @@ class Run {
     detail::poll();
     stats.handles = cut_unsupported_handles(result_.mesh, points_, options_.handles);
     detail::poll();
-    result_.trim = trim_to_samples(result_.mesh, points_.points, options_.trim);
+    result_.trim = trim_to_samples(result_.mesh, trim_samples_, options_.trim);
     detail::poll();
     if (options_.cleanup)
       stats.cleanup = cleanup_isosurface(result_.mesh, options_.cleanup_options);
@@ -360,6 +362,10 @@ class Run {
   }
 
   const PointSet& points_;
+  // The points the trim keeps the surface near: the input's, outliers included
+  // (a point the outlier test dropped that the surface still passes through,
+  // as at a scan's sparse edge, keeps its surface; a stray's disc is an island).
+  const std::vector<Vec3>& trim_samples_;
   Progress& current_;
   const std::function<bool()>& ask_;
   const ReconstructOptions& options_;
@@ -520,7 +526,12 @@ Result run_stages(const PointSet& points, const ReconstructOptions& options, Pro
   const double noise = kind == SolverKind::kSsd       ? ssd.noise
                        : kind == SolverKind::kPoisson ? poisson.noise
                                                       : -1.0;
-  Run run(relative, resolved, current, ask, start);
+  std::vector<Vec3> trim_samples;  // the input's points, outliers included (Run::trim_samples_)
+  if (options.trim.distance > 0) {
+    trim_samples = points.points;
+    for (Vec3& p : trim_samples) p -= centre;
+  }
+  Run run(relative, trim_samples, resolved, current, ask, start);
   Result result = [&] {
     switch (resolved.strategy) {
       case DomainStrategy::kProgressive: return run.progressive();
