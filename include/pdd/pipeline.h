@@ -193,6 +193,9 @@ struct NormalsReport {
   std::size_t unreached = 0;    // kMst: normals the tree did not reach (left as they were)
   std::size_t segments = 0;     // kSpectral: segments of consistent normals
   std::size_t filled = 0;       // zero normals (none given) replaced by estimated ones
+  int neighbors = 0;            // k of the orientation's jets: normal_neighbors, grown on noisy
+                                // points (noise_scaled_neighbors, normals.h)
+  bool smoothed = false;        // noisy points: estimated and oriented on their jets' projection
   double seconds = 0;
 };
 
