@@ -99,7 +99,7 @@ const PointSet& prepare_normals(const PointSet& points, const ReconstructOptions
   guide.normals = estimate || report.smoothed
                       ? estimate_normals(guide.points, report.neighbors, options.source)
                       : storage.normals;
-  const std::vector<Vec3> before = guide.normals;
+  const std::vector<Vec3> before = estimate ? guide.normals : storage.normals;
   report.estimated = estimate;
   report.oriented = true;
   report.orientation = options.orientation;
@@ -120,7 +120,7 @@ const PointSet& prepare_normals(const PointSet& points, const ReconstructOptions
                           : guide.normals;
   for (std::size_t i = 0; i < storage.size(); ++i) {
     if (storage.normals[i].dot(guide.normals[i]) < 0) storage.normals[i] = -storage.normals[i];
-    report.flipped += guide.normals[i].dot(before[i]) < 0;
+    report.flipped += (estimate ? guide.normals[i] : storage.normals[i]).dot(before[i]) < 0;
   }
   return finish();
 }
