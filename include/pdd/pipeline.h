@@ -76,7 +76,8 @@ struct ReconstructOptions {
   DomainStrategy strategy = DomainStrategy::kProgressive;
   NormalsMode normals = NormalsMode::kKeep;      // missing normals are estimated whatever this is
   Orientation orientation = Orientation::kSpectral;  // of estimated or re-oriented normals
-  int normal_neighbors = 18;                     // k of the estimation and the MST
+  int normal_neighbors = 18;                     // k of the estimation (grown on noisy points:
+                                                 // noise_scaled_neighbors, normals.h) and the MST
   std::string source = "points";                 // names the input in error messages
   OutlierOptions outliers;     // stray points dropped before everything else (outliers.h)
   DomainOptions domain;        // §3.2: sphere 1.4 r, 100 points, radius-edge 1.3
