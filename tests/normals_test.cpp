@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "support/shapes.h"
@@ -88,6 +89,27 @@ TEST(Normals, TooFewPointsAreAnInputErrorNamingTheSource) {
     EXPECT_NE(std::string(e.what()).find("few.xyz: 10 points are too few to estimate normals"),
               std::string::npos)
         << e.what();
+  }
+}
+
+TEST(Normals, NoiseGrowsTheNeighbourhood) {
+  EXPECT_EQ(noise_scaled_neighbors(0, 0.01, 18), 18);
+  EXPECT_EQ(noise_scaled_neighbors(0.0005, 0.01, 18), 18);  // clean: as given
+  EXPECT_EQ(noise_scaled_neighbors(0.005, 0.01, 18), 72);   // 18 x (0.005 / 0.0025)^2
+  EXPECT_EQ(noise_scaled_neighbors(0.05, 0.01, 18), kMaxNoiseNeighbors);
+}
+
+TEST(Normals, PointsOffTheSurfaceJoinTheirNeighboursSegment) {
+  // A few points a spacing off the sphere fail every link's tangent test;
+  // alone, each would be turned by its own vote.
+  PointSet sphere = test::sample_sphere(2000);
+  for (int i = 0; i < 2000; i += 400) sphere.points[i] *= 1.08;
+  std::vector<Vec3> normals = sphere.normals;
+  flip_random_normals(normals, 0.5, 5);
+  const std::vector<int> segment = orient_segments(sphere.points, normals, 18);
+  for (std::size_t i = 0; i < segment.size(); ++i) {
+    EXPECT_EQ(segment[i], segment[0]) << i;
+    EXPECT_GT(normals[i].dot(sphere.normals[i]) * normals[0].dot(sphere.normals[0]), 0) << i;
   }
 }
 
@@ -175,6 +197,36 @@ TEST_P(BareShape, FlippedNormalsReorientedGiveTheTrueNormalsSurface) {
     EXPECT_EQ(r.mesh.vertices, truth.mesh.vertices) << "fraction " << fraction;
     EXPECT_EQ(r.mesh.faces, truth.mesh.faces) << "fraction " << fraction;
   }
+}
+
+TEST_P(BareShape, NoisyTorusWithoutNormalsIsOrientedAndHasGenusOne) {
+  // Noise 0.04 against a spacing of about 0.06: jets over 18 neighbours are
+  // off by 14 degrees on average and link the two sides of the noise band.
+  PointSet torus = test::sample_torus(4000, 1.0, 0.35);
+  test::add_noise(torus, 0.04, 11);
+  const ReconstructOptions options = bare_options(0.08, GetParam());
+  NormalsReport report;
+  const PointSet prepared = prepare_normals(without_normals(torus), options, &report);
+  EXPECT_TRUE(report.smoothed);
+  EXPECT_GT(report.neighbors, 40);
+  double mean = 0;
+  for (std::size_t i = 0; i < prepared.size(); ++i) {
+    const Vec3& p = prepared.points[i];
+    const Vec3 truth = (p - Vec3(p.x(), p.y(), 0).normalized()).normalized();
+    const double angle = std::acos(std::clamp(prepared.normals[i].dot(truth), -1.0, 1.0)) * 180 / M_PI;
+    EXPECT_LT(angle, 30) << i;  // outward, and close
+    mean += angle / static_cast<double>(prepared.size());
+  }
+  EXPECT_LT(mean, 5);
+  const Result r = reconstruct(without_normals(torus), options);
+  const SurfaceTopology t = surface_topology(r.mesh);
+  EXPECT_TRUE(t.closed && t.manifold);
+  EXPECT_EQ(t.components, 1);
+  EXPECT_EQ(t.genus, 1);
+  double distance = 0;
+  for (const Vec3& v : r.mesh.vertices)
+    distance += test::distance_to_torus(v, 1.0, 0.35) / static_cast<double>(r.mesh.vertices.size());
+  EXPECT_LT(distance, 0.01);
 }
 
 INSTANTIATE_TEST_SUITE_P(Orientations, BareShape,

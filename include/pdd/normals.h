@@ -25,6 +25,17 @@ constexpr std::size_t kMinPointsForNormals = 16;
 std::vector<Vec3> estimate_normals(const std::vector<Vec3>& points, int neighbors,
                                    const std::string& source);
 
+// The neighbourhood size for normals on points whose noise (estimate_noise,
+// solvers.h) is `noise` and average spacing `spacing`: `neighbors`, grown as
+// (noise / (0.25 spacing))^2 up to kMaxNoiseNeighbors, so that the fit spans
+// several times the noise.
+constexpr int kMaxNoiseNeighbors = 100;
+int noise_scaled_neighbors(double noise, double spacing, int neighbors);
+
+// The points projected onto the quadratic jets fitted to their k nearest
+// neighbours (CGAL::jet_smooth_point_set): noise removed at that scale.
+std::vector<Vec3> smooth_points(const std::vector<Vec3>& points, int neighbors);
+
 // Orients `normals` consistently (flipping some) by propagating the
 // orientation of the highest point (made to face +z) along a minimum spanning
 // tree of the k-nearest-neighbour graph weighted by 1 - |n_i . n_j|
@@ -39,7 +50,9 @@ std::size_t orient_normals_mst(const std::vector<Vec3>& points, std::vector<Vec3
 // are reliable (k-nearest-neighbour links between normals within 26 degrees
 // of parallel, each a step within 12 degrees of both tangent planes, so not
 // across a thin part; strongest first) and makes each segment
-// consistent, flipping some normals. Returns each point's segment (a point index).
+// consistent, flipping some normals; segments of at most `neighbors` points
+// then join a neighbouring one (through their most tangential link between
+// normals within 60 degrees of parallel). Returns each point's segment (a point index).
 std::vector<int> orient_segments(const std::vector<Vec3>& points, std::vector<Vec3>& normals,
                                  int neighbors);
 

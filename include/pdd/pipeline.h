@@ -76,7 +76,8 @@ struct ReconstructOptions {
   DomainStrategy strategy = DomainStrategy::kProgressive;
   NormalsMode normals = NormalsMode::kKeep;      // missing normals are estimated whatever this is
   Orientation orientation = Orientation::kSpectral;  // of estimated or re-oriented normals
-  int normal_neighbors = 18;                     // k of the estimation and the MST
+  int normal_neighbors = 18;                     // k of the estimation (grown on noisy points:
+                                                 // noise_scaled_neighbors, normals.h) and the MST
   std::string source = "points";                 // names the input in error messages
   OutlierOptions outliers;     // stray points dropped before everything else (outliers.h)
   DomainOptions domain;        // §3.2: sphere 1.4 r, 100 points, radius-edge 1.3
@@ -196,6 +197,9 @@ struct NormalsReport {
   std::size_t unreached = 0;    // kMst: normals the tree did not reach (left as they were)
   std::size_t segments = 0;     // kSpectral: segments of consistent normals
   std::size_t filled = 0;       // zero normals (none given) replaced by estimated ones
+  int neighbors = 0;            // k of the orientation's jets: normal_neighbors, grown on noisy
+                                // points (noise_scaled_neighbors, normals.h)
+  bool smoothed = false;        // noisy points: estimated and oriented on their jets' projection
   double seconds = 0;
 };
 

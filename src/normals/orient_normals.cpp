@@ -101,33 +101,46 @@ std::vector<int> orient_segments(const std::vector<Vec3>& points, std::vector<Ve
                                  int neighbors) {
   const detail::NearestNeighbors knn(points);
   struct Edge {
-    double alignment;
+    double alignment;  // |n_i . n_j|
+    double tilt;       // the larger |d . n| of the step d from i to j
     int i, j;
   };
-  std::vector<Edge> edges;
+  std::vector<Edge> reliable, others;
   for (std::size_t i = 0; i < points.size(); ++i)
     for (const int j : knn.query(points[i], neighbors + 1)) {
       if (j <= static_cast<int>(i)) continue;
       const double alignment = std::abs(normals[i].dot(normals[j]));
       const Vec3 d = (points[j] - points[i]).normalized();
+      const double tilt = std::max(std::abs(d.dot(normals[i])), std::abs(d.dot(normals[j])));
       // A reliable link: nearly parallel normals, and a step along both
       // tangent planes, not across a thin part between two sheets.
-      if (alignment < 0.9 || std::abs(d.dot(normals[i])) > 0.2 ||
-          std::abs(d.dot(normals[j])) > 0.2)
-        continue;
-      edges.push_back({alignment, static_cast<int>(i), j});
+      (alignment >= 0.9 && tilt <= 0.2 ? reliable : others)
+          .push_back({alignment, tilt, static_cast<int>(i), j});
     }
-  std::stable_sort(edges.begin(), edges.end(),
+  std::stable_sort(reliable.begin(), reliable.end(),
                    [](const Edge& a, const Edge& b) { return a.alignment > b.alignment; });
   SignedUnionFind sets(points.size());
-  for (const Edge& e : edges) {
+  std::vector<std::size_t> size(points.size(), 1);
+  const auto join = [&](const Edge& e, std::size_t below) {
     const auto [ri, pi] = sets.find(e.i);
     const auto [rj, pj] = sets.find(e.j);
-    if (ri == rj) continue;
+    if (ri == rj || std::min(size[ri], size[rj]) >= below) return;
     const std::uint8_t opposite = normals[e.i].dot(normals[e.j]) < 0;
     sets.parent[rj] = ri;
     sets.parity[rj] = pi ^ pj ^ opposite;
-  }
+    size[ri] += size[rj];
+  };
+  for (const Edge& e : reliable) join(e, points.size() + 1);
+  // Segments smaller than a neighbourhood (a noisy point, a crease's few
+  // points) would be turned by a vote of a few samples: they join a
+  // neighbouring segment through their most tangential link of roughly
+  // parallel normals instead.
+  others.erase(std::remove_if(others.begin(), others.end(),
+                              [](const Edge& e) { return e.alignment < 0.5; }),
+               others.end());
+  std::stable_sort(others.begin(), others.end(),
+                   [](const Edge& a, const Edge& b) { return a.tilt < b.tilt; });
+  for (const Edge& e : others) join(e, static_cast<std::size_t>(neighbors) + 1);
   std::vector<int> segment(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto [root, parity] = sets.find(static_cast<int>(i));

@@ -4,6 +4,7 @@
 #include <pdd/errors.h>
 #include <pdd/normals.h>
 #include <pdd/sizing.h>
+#include <pdd/solvers.h>
 
 #include "common/cancellation.h"
 
@@ -20,9 +21,8 @@ namespace {
 // most of the surface but not across parts thinner than its tets; so it only
 // votes: the segments over which the normals' relative signs are reliable
 // (orient_segments) each take the sign of their majority.
-std::size_t orient_by_spectral_vote(PointSet& input, const ReconstructOptions& options,
-                                    std::size_t& segments) {
-  const std::vector<Vec3> initial = input.normals;
+void orient_by_spectral_vote(PointSet& input, const ReconstructOptions& options,
+                             std::size_t& segments) {
   const std::vector<int> segment =
       orient_segments(input.points, input.normals, options.normal_neighbors);
 
@@ -60,13 +60,10 @@ std::size_t orient_by_spectral_vote(PointSet& input, const ReconstructOptions& o
     vote[segment[i]] += outside > inside ? 1 : -1;
   }
   segments = 0;
-  std::size_t flipped = 0;
   for (std::size_t i = 0; i < input.size(); ++i) {
     segments += segment[i] == static_cast<int>(i);
     if (vote[segment[i]] < 0) input.normals[i] = -input.normals[i];
-    flipped += input.normals[i].dot(initial[i]) < 0;
   }
-  return flipped;
 }
 
 }  // namespace
@@ -78,33 +75,54 @@ const PointSet& prepare_normals(const PointSet& points, const ReconstructOptions
                                               [](const Vec3& n) { return n.squaredNorm() == 0; });
   if (!estimate && !zeros && options.normals == NormalsMode::kKeep) return points;
   const auto start = std::chrono::steady_clock::now();
-  storage.points = points.points;
-  storage.normals = estimate
-                        ? estimate_normals(points.points, options.normal_neighbors, options.source)
-                        : points.normals;
-  if (zeros)
-    report.filled = fill_missing_normals(storage.points, storage.normals,
-                                         options.normal_neighbors, options.source);
-  if (!estimate && options.normals == NormalsMode::kKeep) {
+  const auto finish = [&]() -> const PointSet& {
     report.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return storage;
-  }
+  };
+  storage.points = points.points;
+  storage.normals = points.normals;
+  if (zeros)
+    report.filled = fill_missing_normals(storage.points, storage.normals,
+                                         options.normal_neighbors, options.source);
+  if (!estimate && options.normals == NormalsMode::kKeep) return finish();
+
+  // On noisy points (noise near the spacing), normals fitted over k points and
+  // steps between raw neighbours are mostly noise: the orientation (and the
+  // estimation) then run on the points projected onto jets fitted at a scale
+  // that follows the noise, with those jets' normals.
+  report.neighbors = noise_scaled_neighbors(estimate_noise(points), average_spacing(points),
+                                            options.normal_neighbors);
+  report.smoothed = report.neighbors > options.normal_neighbors;
+  PointSet guide;  // the geometry the orientation runs on
+  guide.points = report.smoothed ? smooth_points(points.points, report.neighbors) : points.points;
+  guide.normals = estimate || report.smoothed
+                      ? estimate_normals(guide.points, report.neighbors, options.source)
+                      : storage.normals;
+  const std::vector<Vec3> before = estimate ? guide.normals : storage.normals;
   report.estimated = estimate;
   report.oriented = true;
   report.orientation = options.orientation;
   switch (options.orientation) {
     case Orientation::kMst:
-      report.flipped = orient_normals_mst(storage.points, storage.normals,
-                                          options.normal_neighbors, &report.unreached);
+      orient_normals_mst(guide.points, guide.normals, options.normal_neighbors, &report.unreached);
       break;
     case Orientation::kSpectral:
-      report.flipped = orient_by_spectral_vote(storage, options, report.segments);
+      orient_by_spectral_vote(guide, options, report.segments);
       break;
   }
-  report.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return storage;
+  // The normals handed on are fitted to the points themselves (the guide's,
+  // fitted again on smoothed points, are smoother still) or given; they take
+  // the sign of the oriented guide.
+  if (estimate)
+    storage.normals = report.smoothed
+                          ? estimate_normals(points.points, report.neighbors, options.source)
+                          : guide.normals;
+  for (std::size_t i = 0; i < storage.size(); ++i) {
+    if (storage.normals[i].dot(guide.normals[i]) < 0) storage.normals[i] = -storage.normals[i];
+    report.flipped += (estimate ? guide.normals[i] : storage.normals[i]).dot(before[i]) < 0;
+  }
+  return finish();
 }
 
 }  // namespace pdd::detail

@@ -106,8 +106,9 @@ std::vector<OptionSpec> make_specs() {
       [](ReconstructOptions& o) -> Orientation& { return o.orientation; },
       to_string(d.orientation)));
   s.push_back(integer("normal-neighbors",
-                      "Neighbours of each point for the normals' estimation (jet fitting) and "
-                      "the minimum spanning tree",
+                      "Neighbours of each point for the normals' estimation (jet fitting; more, "
+                      "up to 100, on points whose estimated noise is over a quarter of their "
+                      "spacing) and the minimum spanning tree",
                       [](ReconstructOptions& o) -> int& { return o.normal_neighbors; }, 6,
                       1000));
   s.push_back(number(

@@ -32,7 +32,9 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
       << "\", \"estimated\": " << (result.normals.estimated ? "true" : "false")
       << ", \"oriented\": " << (result.normals.oriented ? "true" : "false")
       << ", \"orientation\": \"" << to_string(result.normals.orientation)
-      << "\", \"neighbors\": " << options.normal_neighbors
+      << "\", \"neighbors\": "
+      << (result.normals.neighbors > 0 ? result.normals.neighbors : options.normal_neighbors)
+      << ", \"smoothed\": " << (result.normals.smoothed ? "true" : "false")
       << ", \"flipped\": " << result.normals.flipped
       << ", \"unreached\": " << result.normals.unreached
       << ", \"segments\": " << result.normals.segments
@@ -154,7 +156,10 @@ std::string normals_note(const Result& result) {
     return std::to_string(n.filled) + " zero normal" + (n.filled == 1 ? "" : "s") +
            " replaced by estimated ones (jet fitting), turned as their neighbours'";
   if (!n.oriented) return "";
-  std::string line = std::string("normals ") + (n.estimated ? "estimated by jet fitting and " : "") +
+  const std::string scale =
+      n.smoothed ? " over " + std::to_string(n.neighbors) + " neighbours (noisy points)" : "";
+  std::string line = std::string("normals ") +
+                     (n.estimated ? "estimated by jet fitting" + scale + " and " : "") +
                      "oriented " +
                      (n.orientation == Orientation::kMst
                           ? "along a minimum spanning tree"
