@@ -360,7 +360,7 @@ CutHandles cut_unsupported_handles(TriangleMesh& mesh, const PointSet& samples,
   if (!options.enabled || mesh.faces.empty() || !samples.has_normals() || samples.size() < 2)
     return {};
   const detail::NearestNeighbors tree(samples.points);
-  const double spacing = detail::sample_spacing(samples.points, tree, 2).average;
+  const double spacing = detail::average_spacing(samples.points, tree);
   const std::vector<char> unsupported =
       unsupported_faces(mesh, samples, tree, options.radius_spacings * spacing, options.support_degrees);
   detail::poll();

@@ -20,4 +20,7 @@ struct Spacing {
 
 Spacing sample_spacing(const std::vector<Vec3>& samples, const NearestNeighbors& tree, int k);
 
+// Only the average spacing.
+double average_spacing(const std::vector<Vec3>& samples, const NearestNeighbors& tree);
+
 }  // namespace pdd::detail
