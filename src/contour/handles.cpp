@@ -372,10 +372,10 @@ CutHandles cut_unsupported_handles(TriangleMesh& mesh, const PointSet& samples,
   // many pieces is a handle's waist.
   std::vector<char> removed(mesh.faces.size(), 0), in_band(mesh.faces.size(), 0);
   CutHandles report;
-  // Grows `band` by `rings` rings of faces; cuts it when it is a handle's waist.
-  const auto try_cut = [&](std::vector<int> band, int rings) {
+  // Grows `band` by the options' rings of faces; cuts it when it is a handle's waist.
+  const auto try_cut = [&](std::vector<int> band) {
     for (int k : band) in_band[k] = 1;
-    for (int ring = 0; ring < rings; ++ring) {
+    for (int ring = 0; ring < options.band_rings; ++ring) {
       const std::size_t n = band.size();
       for (std::size_t i = 0; i < n; ++i)
         for (int v : mesh.faces[band[i]])
@@ -408,7 +408,7 @@ CutHandles cut_unsupported_handles(TriangleMesh& mesh, const PointSet& samples,
                    [](const auto& a, const auto& b) { return a.size() > b.size(); });
   for (const std::vector<int>& cluster : clusters) {
     detail::poll();
-    try_cut(cluster, options.band_rings);
+    try_cut(cluster);
   }
   if (report.handles > 0) {
     TriangleMesh capped = mesh;
