@@ -123,6 +123,25 @@ TEST(Handles, AWaistOfThreeEdgesIsCutAndBothSidesClosed) {
   EXPECT_EQ(sphere.faces.size(), sphere_faces);
 }
 
+TEST(Handles, WaistsOfTwoToriAreEachCutOnce) {
+  // Three such tori side by side: one cut each, in one pass, and no more (every other meridian
+  // then separates its own torus).
+  TriangleMesh mesh;
+  for (int t = 0; t < 3; ++t) {
+    const TriangleMesh one = torus_mesh(kR, kr, 12 + t, 3);
+    const int base = static_cast<int>(mesh.vertices.size());
+    for (const Vec3& p : one.vertices) mesh.vertices.push_back(p + Vec3(2.0 * t, 0, 0));
+    for (const auto& f : one.faces) mesh.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
+  }
+  ASSERT_EQ(topology(mesh).components, 3);
+  EXPECT_EQ(cut_triangle_waists(mesh), 3);
+  const SurfaceTopology t = topology(mesh);
+  EXPECT_TRUE(t.closed);
+  EXPECT_TRUE(t.manifold);
+  EXPECT_EQ(t.components, 3);
+  EXPECT_EQ(t.genus, 0);
+}
+
 TEST(Handles, OffOrWithoutNormalsNothingHappensAndBadOptionsThrow) {
   TriangleMesh mesh = torus_mesh(kR, kr, 48, 32);
   PointSet bare = test::sample_torus(2000, kR, kr);

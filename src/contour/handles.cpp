@@ -124,12 +124,53 @@ std::vector<std::vector<int>> edge_connected(const Adjacency& adj,
   return groups;
 }
 
+// Whether the faces reached from `first` and those from `second` are one
+// piece: two breadth-first searches in turn, through the edges that
+// `passable(face, corner)` opens, until they meet (one piece) or one runs out
+// (separated), so that the cost follows the smaller side or the distance
+// between the two. `side` is all zero, and is left so.
+template <class Passable>
+bool sides_meet(const std::vector<std::array<int, 3>>& across, const std::vector<int>& first,
+                const std::vector<int>& second, std::vector<char>& side, Passable passable) {
+  std::array<std::vector<int>, 2> queue{std::vector<int>{}, std::vector<int>{}};
+  std::array<std::size_t, 2> head{0, 0};
+  std::vector<int> touched;
+  bool met = false;
+  const auto reach = [&](int k, int s) {
+    if (side[k] == 0) {
+      side[k] = static_cast<char>(s + 1);
+      touched.push_back(k);
+      queue[s].push_back(k);
+    } else if (side[k] != s + 1) {
+      met = true;
+    }
+  };
+  for (int k : first) reach(k, 0);
+  for (int k : second) reach(k, 1);
+  bool separated = queue[0].empty() || queue[1].empty();
+  while (!met && !separated)
+    for (int s = 0; s < 2 && !met; ++s) {
+      if (head[s] == queue[s].size()) {
+        separated = true;
+        break;
+      }
+      const int k = queue[s][head[s]++];
+      for (int i = 0; i < 3 && !met; ++i) {
+        const int g = across[k][i];
+        if (g >= 0 && passable(k, i)) reach(g, s);
+      }
+    }
+  for (int k : touched) side[k] = 0;
+  return met;
+}
+
 // Whether the faces of `band` (marked in `in_band`) form an annulus around a
 // tube of the mesh: Euler characteristic 0, one edge-connected piece, two
 // simple boundary loops that share no vertex, every boundary edge inner to
 // the mesh. Local: the cost follows the band's size.
+// `loop_of` gets each boundary vertex's loop, 1 or 2.
 bool is_annulus(const TriangleMesh& mesh, const Adjacency& adj, const std::vector<int>& band,
-                const std::vector<char>& in_band) {
+                const std::vector<char>& in_band, std::map<int, char>& loop_of) {
   std::vector<std::pair<int, int>> edges;
   std::vector<int> vertices;
   for (int k : band)
@@ -157,19 +198,19 @@ bool is_annulus(const TriangleMesh& mesh, const Adjacency& adj, const std::vecto
     rim[e.second].push_back(e.first);
   }
   int loops = 0;
-  std::map<int, char> seen;
+  loop_of.clear();
   for (const auto& [v, next] : rim) {
     if (next.size() != 2) return false;  // loops touching at v
-    if (seen[v]) continue;
-    ++loops;
+    if (loop_of[v]) continue;
+    if (++loops > 2) return false;
     std::vector<int> stack{v};
-    seen[v] = 1;
+    loop_of[v] = static_cast<char>(loops);
     while (!stack.empty()) {
       const int u = stack.back();
       stack.pop_back();
       for (int w : rim[u])
-        if (!seen[w]) {
-          seen[w] = 1;
+        if (!loop_of[w]) {
+          loop_of[w] = static_cast<char>(loops);
           stack.push_back(w);
         }
     }
@@ -236,13 +277,13 @@ bool cap_holes(TriangleMesh& mesh, const std::vector<char>& removed) {
   return true;
 }
 
-// Finds one cycle of three edges that bounds no face and does not separate
-// the mesh (a handle whose waist is a single triangle's worth, below any
-// resolution), cuts the mesh along it and closes both sides with a triangle.
-// Whether a cycle separates: two searches from the faces on its two sides,
-// in turn, never crossing its edges, until one runs out (it separates) or
-// they meet (it does not); the cost follows the smaller side.
-bool cut_triangle_waist(TriangleMesh& mesh) {
+// One pass over the cycles of three edges that bound no face and do not
+// separate the mesh (handles whose waist is a single triangle's worth, below
+// any resolution): each is cut, and both sides closed with a triangle. A
+// cycle is tested on the mesh as the pass found it, with the cycles already
+// cut this pass as barriers; one that touches the faces of such a cut waits
+// for the next pass (`deferred`). Returns the cuts.
+int cut_triangle_waists_once(TriangleMesh& mesh, bool& deferred) {
   const std::vector<std::array<int, 3>> across = face_neighbours(mesh);
   std::vector<std::vector<int>> neighbours(mesh.vertices.size());
   std::vector<std::vector<std::pair<int, int>>> out(mesh.vertices.size());  // u -> (w, face running u w)
@@ -262,8 +303,18 @@ bool cut_triangle_waist(TriangleMesh& mesh) {
     return -1;
   };
   const auto runs = [&](int u, int w) { return left_face(u, w) >= 0; };
-  std::vector<int> side(mesh.faces.size(), 0);
-  for (int a = 0; a < static_cast<int>(mesh.vertices.size()); ++a)
+  const auto edge = [](int u, int w) { return std::pair<int, int>(std::min(u, w), std::max(u, w)); };
+  struct Cut {
+    std::array<int, 3> cycle;
+    std::vector<int> right;  // the faces at the cycle on its right side
+  };
+  std::vector<Cut> cuts;
+  std::vector<std::pair<int, int>> barriers;  // the edges of this pass's cuts
+  std::vector<char> side(mesh.faces.size(), 0), near_cut(mesh.vertices.size(), 0),
+      on_barrier(mesh.vertices.size(), 0);
+  deferred = false;
+  for (int a = 0; a < static_cast<int>(mesh.vertices.size()); ++a) {
+    if (a % 65536 == 0) detail::poll();
     for (int b : neighbours[a]) {
       if (b <= a) continue;
       for (int c : neighbours[b]) {
@@ -273,80 +324,67 @@ bool cut_triangle_waist(TriangleMesh& mesh) {
         if (!(runs(a, b) && runs(b, a) && runs(b, c) && runs(c, b) && runs(c, a) && runs(a, c)))
           continue;
         const int left = left_face(a, b), right = left_face(b, a);
-        const auto has = [&](int k, int u, int v, int w) {
+        const auto has = [&](int k) {
           const auto& f = mesh.faces[k];
-          return std::count(f.begin(), f.end(), u) + std::count(f.begin(), f.end(), v) +
-                     std::count(f.begin(), f.end(), w) == 3;
+          return std::count(f.begin(), f.end(), a) + std::count(f.begin(), f.end(), b) +
+                     std::count(f.begin(), f.end(), c) == 3;
         };
-        if (has(left, a, b, c) || has(right, a, b, c)) continue;
-        const auto on_cycle = [&](int k, int i) {
-          const int u = mesh.faces[k][i], w = mesh.faces[k][(i + 1) % 3];
-          const auto e = std::minmax(u, w);
-          return e == std::minmax(a, b) || e == std::minmax(b, c) || e == std::minmax(c, a);
-        };
-        // The two searches, labelled 1 (left) and 2 (right) in `side`.
-        std::vector<int> touched;
-        std::array<std::vector<int>, 2> frontier{std::vector<int>{left}, std::vector<int>{right}};
-        side[left] = 1;
-        side[right] = 2;
-        touched = {left, right};
-        bool met = false, separates = false;
-        while (!met && !separates) {
-          for (int s = 0; s < 2 && !met && !separates; ++s) {
-            if (frontier[s].empty()) {
-              separates = true;
-              break;
-            }
-            const int k = frontier[s].back();
-            frontier[s].pop_back();
-            for (int i = 0; i < 3; ++i) {
-              const int g = across[k][i];
-              if (g < 0 || on_cycle(k, i)) continue;
-              if (side[g] == 0) {
-                side[g] = s + 1;
-                touched.push_back(g);
-                frontier[s].push_back(g);
-              } else if (side[g] != s + 1) {
-                met = true;
-              }
-            }
-          }
-        }
-        if (!met) {
-          for (int k : touched) side[k] = 0;
+        if (has(left) || has(right)) continue;
+        if (near_cut[a] || near_cut[b] || near_cut[c]) {
+          deferred = true;
           continue;
         }
-        // Cut: the faces at a, b, c on the right side take copies of them. At
-        // each vertex the right side is its fan from `right` up to the cycle.
-        std::fill(side.begin(), side.end(), 0);
-        const int n = static_cast<int>(mesh.vertices.size());
-        const std::array<int, 3> cycle{a, b, c};
+        const auto crosses = [&](int k, int i) {  // the edge is on this cycle or a cut one
+          const int u = mesh.faces[k][i], w = mesh.faces[k][(i + 1) % 3];
+          const auto e = edge(u, w);
+          if (e == edge(a, b) || e == edge(b, c) || e == edge(c, a)) return true;
+          return on_barrier[u] && on_barrier[w] &&
+                 std::find(barriers.begin(), barriers.end(), e) != barriers.end();
+        };
+        if (!sides_meet(across, {left}, {right}, side, [&](int k, int i) { return !crosses(k, i); }))
+          continue;
+        // The right side at each vertex is its fan from `right` up to the cycle.
         std::vector<int> fan{right};
-        side[right] = 2;
+        side[right] = 1;
         for (std::size_t i = 0; i < fan.size(); ++i) {
           const int k = fan[i];
           for (int j = 0; j < 3; ++j) {
             const int g = across[k][j];
-            if (g < 0 || side[g] || on_cycle(k, j)) continue;
+            if (g < 0 || side[g] || crosses(k, j)) continue;
             const auto& f = mesh.faces[g];
             if (std::none_of(f.begin(), f.end(), [&](int v) { return v == a || v == b || v == c; }))
               continue;
-            side[g] = 2;
+            side[g] = 1;
             fan.push_back(g);
           }
         }
-        if (side[left] == 2) return false;  // not two sides after all: leave it
-        for (int k : fan)
-          for (int& v : mesh.faces[k])
-            for (int j = 0; j < 3; ++j)
-              if (v == cycle[j]) v = n + j;
-        for (int j = 0; j < 3; ++j) mesh.vertices.push_back(mesh.vertices[cycle[j]]);
-        mesh.faces.push_back({a, c, b});          // closes the left side
-        mesh.faces.push_back({n, n + 1, n + 2});  // and the right one
-        return true;
+        const bool two_sides = side[left] == 0;
+        for (int k : fan) side[k] = 0;
+        if (!two_sides) continue;
+        for (int v : {a, b, c}) {
+          on_barrier[v] = 1;
+          for (const auto& [w, k] : out[v])
+            for (int x : mesh.faces[k]) near_cut[x] = 1;
+        }
+        barriers.push_back(edge(a, b));
+        barriers.push_back(edge(b, c));
+        barriers.push_back(edge(c, a));
+        cuts.push_back({{a, b, c}, std::move(fan)});
       }
     }
-  return false;
+  }
+  // The faces at a, b, c on the right take copies of them; a triangle closes each side.
+  for (const Cut& cut : cuts) {
+    const int n = static_cast<int>(mesh.vertices.size());
+    for (int k : cut.right)
+      for (int& v : mesh.faces[k])
+        for (int j = 0; j < 3; ++j)
+          if (v == cut.cycle[j]) v = n + j;
+    for (int j = 0; j < 3; ++j) mesh.vertices.push_back(mesh.vertices[cut.cycle[j]]);
+    mesh.faces.push_back({cut.cycle[0], cut.cycle[2], cut.cycle[1]});
+    mesh.faces.push_back({n, n + 1, n + 2});
+  }
+  return static_cast<int>(cuts.size());
 }
 
 }  // namespace
@@ -365,12 +403,12 @@ CutHandles cut_unsupported_handles(TriangleMesh& mesh, const PointSet& samples,
       unsupported_faces(mesh, samples, tree, options.radius_spacings * spacing, options.support_degrees);
   detail::poll();
   const Adjacency adj(mesh);
-  std::vector<char> all(mesh.faces.size(), 1);
-  const std::size_t pieces = edge_connected(adj, all).size();
 
   // A band of faces that is an annulus whose removal leaves the mesh in as
   // many pieces is a handle's waist.
-  std::vector<char> removed(mesh.faces.size(), 0), in_band(mesh.faces.size(), 0);
+  std::vector<char> removed(mesh.faces.size(), 0), in_band(mesh.faces.size(), 0),
+      side(mesh.faces.size(), 0);
+  std::map<int, char> loop_of;
   CutHandles report;
   // Grows `band` by the options' rings of faces; cuts it when it is a handle's waist.
   const auto try_cut = [&](std::vector<int> band) {
@@ -385,12 +423,27 @@ CutHandles cut_unsupported_handles(TriangleMesh& mesh, const PointSet& samples,
               band.push_back(g);
             }
     }
-    bool cut = std::none_of(band.begin(), band.end(), [&](int k) { return removed[k] != 0; }) &&
-               is_annulus(mesh, adj, band, in_band);
-    if (cut) {
-      std::vector<char> rest(mesh.faces.size(), 0);
-      for (std::size_t k = 0; k < rest.size(); ++k) rest[k] = !removed[k] && !in_band[k];
-      cut = edge_connected(adj, rest).size() == pieces;  // otherwise it separates: a limb
+    // A band that touches an earlier cut waits: between the two, a sliver could
+    // be cut loose that the two loops' sides below do not see.
+    const auto touches_cut = [&](int k) {
+      for (int v : mesh.faces[k])
+        for (int g : adj.vertex_faces[v])
+          if (removed[g]) return true;
+      return false;
+    };
+    bool cut = std::none_of(band.begin(), band.end(), touches_cut) &&
+               is_annulus(mesh, adj, band, in_band, loop_of);
+    if (cut) {  // the two loops' outer sides must stay one piece; otherwise it separates: a limb
+      std::array<std::vector<int>, 2> outer;
+      for (int k : band)
+        for (int i = 0; i < 3; ++i) {
+          const int g = adj.across[k][i];
+          if (!in_band[g] && !removed[g]) outer[loop_of[mesh.faces[k][i]] - 1].push_back(g);
+        }
+      cut = sides_meet(adj.across, outer[0], outer[1], side, [&](int k, int i) {
+        const int g = adj.across[k][i];
+        return !in_band[g] && !removed[g];
+      });
     }
     for (int k : band) {
       in_band[k] = 0;
@@ -424,9 +477,10 @@ CutHandles cut_unsupported_handles(TriangleMesh& mesh, const PointSet& samples,
 
 int cut_triangle_waists(TriangleMesh& mesh) {
   int cuts = 0;
-  while (cut_triangle_waist(mesh)) {
-    detail::poll();
-    ++cuts;
+  for (bool deferred = true; deferred;) {
+    const int pass = cut_triangle_waists_once(mesh, deferred);
+    cuts += pass;
+    deferred = deferred && pass > 0;
   }
   return cuts;
 }
