@@ -167,8 +167,8 @@ bool sides_meet(const std::vector<std::array<int, 3>>& across, const std::vector
 // Whether the faces of `band` (marked in `in_band`) form an annulus around a
 // tube of the mesh: Euler characteristic 0, one edge-connected piece, two
 // simple boundary loops that share no vertex, every boundary edge inner to
-// the mesh. Local: the cost follows the band's size.
-// `loop_of` gets each boundary vertex's loop, 1 or 2.
+// the mesh; `loop_of` gets each boundary vertex's loop, 1 or 2. Local: the
+// cost follows the band's size.
 bool is_annulus(const TriangleMesh& mesh, const Adjacency& adj, const std::vector<int>& band,
                 const std::vector<char>& in_band, std::map<int, char>& loop_of) {
   std::vector<std::pair<int, int>> edges;
@@ -477,11 +477,7 @@ CutHandles cut_unsupported_handles(TriangleMesh& mesh, const PointSet& samples,
 
 int cut_triangle_waists(TriangleMesh& mesh) {
   int cuts = 0;
-  for (bool deferred = true; deferred;) {
-    const int pass = cut_triangle_waists_once(mesh, deferred);
-    cuts += pass;
-    deferred = deferred && pass > 0;
-  }
+  for (bool deferred = true; deferred;) cuts += cut_triangle_waists_once(mesh, deferred);
   return cuts;
 }
 
