@@ -438,7 +438,7 @@ CutHandles cut_unsupported_handles(TriangleMesh& mesh, const PointSet& samples,
       for (int k : band)
         for (int i = 0; i < 3; ++i) {
           const int g = adj.across[k][i];
-          if (!in_band[g] && !removed[g]) outer[loop_of[mesh.faces[k][i]] - 1].push_back(g);
+          if (!in_band[g]) outer[loop_of.at(mesh.faces[k][i]) - 1].push_back(g);
         }
       cut = sides_meet(adj.across, outer[0], outer[1], side, [&](int k, int i) {
         const int g = adj.across[k][i];
