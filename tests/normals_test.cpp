@@ -229,8 +229,71 @@ TEST_P(BareShape, NoisyTorusWithoutNormalsIsOrientedAndHasGenusOne) {
   EXPECT_LT(distance, 0.01);
 }
 
+// A scan of a house without its floor (the scanner never saw it): four walls
+// and a flat roof of a 2 x 1.2 x 1 box, points on a jittered grid, their
+// normals outward. Inside and outside meet through the open base, so no
+// solve encloses an inside; the roof is seen from the sky, the walls from
+// around.
+PointSet open_house(double spacing) {
+  PointSet house;
+  const Vec3 size(2.0, 1.2, 1.0);
+  std::uint64_t state = 12345;
+  const auto jitter = [&state, spacing] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5) * 0.5 * spacing;
+  };
+  // Face: axis a fixed at 0 or size[a] (side -1 or +1), spanning the other two.
+  const auto face = [&](int a, int side) {
+    const int b = (a + 1) % 3, c = (a + 2) % 3;
+    for (double u = spacing / 2; u < size[b]; u += spacing)
+      for (double v = spacing / 2; v < size[c]; v += spacing) {
+        Vec3 p;
+        p[a] = side > 0 ? size[a] : 0;
+        p[b] = std::clamp(u + jitter(), 0.0, size[b]);
+        p[c] = std::clamp(v + jitter(), 0.0, size[c]);
+        Vec3 n = Vec3::Zero();
+        n[a] = side;
+        house.points.push_back(p);
+        house.normals.push_back(n);
+      }
+  };
+  face(0, -1), face(0, 1), face(1, -1), face(1, 1), face(2, 1);  // no floor (z = 0)
+  return house;
+}
+
+TEST(Normals, VisibilityTurnsAnOpenScanOutward) {
+  const PointSet house = open_house(0.04);
+  ReconstructOptions options;
+  options.orientation = Orientation::kVisibility;
+  NormalsReport report;
+  const PointSet prepared = prepare_normals(without_normals(house), options, &report);
+  ASSERT_EQ(prepared.size(), house.size());
+  EXPECT_EQ(report.orientation, Orientation::kVisibility);
+  std::size_t outward = 0;
+  for (std::size_t i = 0; i < house.size(); ++i)
+    outward += prepared.normals[i].dot(house.normals[i]) > 0;
+  // All but a few at the edges, where jets round the corner.
+  EXPECT_GT(static_cast<double>(outward), 0.99 * static_cast<double>(house.size()));
+}
+
+TEST(Normals, AOneSidedScanIsUnclearToVisibilityAndTakesTheSpectralVote) {
+  // A cap of the unit sphere 50 degrees around its pole, as one view sees
+  // it: open on both sides, its rays escape either way.
+  PointSet cap;
+  for (const Vec3& p : test::sample_sphere(6000).points)
+    if (p.z() > std::cos(50 * M_PI / 180)) cap.points.push_back(p);
+  ReconstructOptions options;
+  options.orientation = Orientation::kVisibility;
+  NormalsReport report;
+  const PointSet prepared = prepare_normals(cap, options, &report);
+  EXPECT_EQ(report.unclear, cap.size());
+  for (std::size_t i = 0; i < cap.size(); ++i)
+    EXPECT_GT(prepared.normals[i].dot(cap.points[i]), 0.9) << i;  // outward, within 25 degrees
+}
+
 INSTANTIATE_TEST_SUITE_P(Orientations, BareShape,
-                         ::testing::Values(Orientation::kMst, Orientation::kSpectral),
+                         ::testing::Values(Orientation::kMst, Orientation::kSpectral,
+                                           Orientation::kVisibility),
                          [](const auto& info) { return to_string(info.param); });
 
 }  // namespace

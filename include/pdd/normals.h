@@ -53,8 +53,24 @@ std::size_t orient_normals_mst(const std::vector<Vec3>& points, std::vector<Vec3
 // consistent, flipping some normals; segments of at most `neighbors` points
 // then join a neighbouring one (through their most tangential link between
 // normals within 60 degrees of parallel). Returns each point's segment (a point index).
+// With `votes` (each point's, in [-1, 1], for its normal as given: visibility_votes),
+// two segments whose mean votes are clear and contradict the link between them
+// are not joined.
 std::vector<int> orient_segments(const std::vector<Vec3>& points, std::vector<Vec3>& normals,
-                                 int neighbors);
+                                 int neighbors, const std::vector<double>* votes = nullptr);
+
+// A segment whose mean vote (visibility_votes) is at least this is clear
+// about its sign.
+constexpr double kConfidentVote = 0.25;
+
+// For each of the points listed in `samples`: the share of rays around +n that
+// leave the points' bounding box without passing a point, less that around -n,
+// in [-1, 1] (the open side is the outside). The rays march through a grid of
+// cells of 1.5 `spacing` (the average spacing), blocked by the cells within
+// each point's mean distance to its 6 nearest.
+std::vector<double> visibility_votes(const std::vector<Vec3>& points,
+                                     const std::vector<Vec3>& normals,
+                                     const std::vector<std::size_t>& samples, double spacing);
 
 // Replaces the zero normals ((0, 0, 0): none, as some scanners write it) by
 // ones estimated by jet fitting over `neighbors` nearest points, each turned to

@@ -48,6 +48,8 @@ enum class Orientation {
   kSpectral,  // segments of reliably consistent normals, each turned by the majority of
               // its points along the gradient of a coarse run of the spectral solver
               // (§3.5, Eq. 16-17), which needs no orientation
+  kVisibility,  // the same segments, each turned by the majority of its points towards
+                // the side from which more rays escape past the points to infinity
 };
 Orientation parse_orientation(const std::string& name);  // InputError when unknown
 std::string to_string(Orientation orientation);
@@ -75,7 +77,7 @@ using IterationCallback =
 struct ReconstructOptions {
   DomainStrategy strategy = DomainStrategy::kProgressive;
   NormalsMode normals = NormalsMode::kKeep;      // missing normals are estimated whatever this is
-  Orientation orientation = Orientation::kSpectral;  // of estimated or re-oriented normals
+  Orientation orientation = Orientation::kVisibility;  // of estimated or re-oriented normals
   int normal_neighbors = 18;                     // k of the estimation (grown on noisy points:
                                                  // noise_scaled_neighbors, normals.h) and the MST
   std::string source = "points";                 // names the input in error messages
@@ -192,10 +194,12 @@ std::size_t parse_memory_size(const std::string& text, const std::string& what =
 struct NormalsReport {
   bool estimated = false;       // by jet fitting (the input had none, or NormalsMode::kEstimate)
   bool oriented = false;        // by `orientation` (estimated, or NormalsMode::kOrient)
-  Orientation orientation = Orientation::kSpectral;
+  Orientation orientation = Orientation::kVisibility;
   std::size_t flipped = 0;      // normals whose sign the orientation changed
   std::size_t unreached = 0;    // kMst: normals the tree did not reach (left as they were)
-  std::size_t segments = 0;     // kSpectral: segments of consistent normals
+  std::size_t segments = 0;     // kSpectral, kVisibility: segments of consistent normals
+  std::size_t unclear = 0;      // kVisibility: points of segments whose visibility was unclear
+                                // and that took a coarse spectral run's vote (one-sided scans)
   std::size_t filled = 0;       // zero normals (none given) replaced by estimated ones
   int neighbors = 0;            // k of the orientation's jets: normal_neighbors, grown on noisy
                                 // points (noise_scaled_neighbors, normals.h)

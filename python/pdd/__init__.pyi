@@ -59,7 +59,7 @@ def reconstruct(
     *,
     solver: Literal["ssd", "poisson", "spectral"] = "ssd",
     normals_mode: Literal["keep", "orient", "estimate"] = "keep",
-    orientation: Literal["spectral", "mst"] = "spectral",
+    orientation: Literal["visibility", "spectral", "mst"] = "visibility",
     normal_neighbors: int = 18,
     outliers: float = 3.0,
     value_weight: Optional[float] = None,
@@ -99,7 +99,7 @@ def reconstruct(
 ) -> Mesh: ...
 def estimate_normals(points: Union[ArrayLike, PointCloud, Any], normals: Optional[ArrayLike] = None,
                      *, normals_mode: Literal["keep", "orient", "estimate"] = "keep",
-                     orientation: Literal["spectral", "mst"] = "spectral", normal_neighbors: int = 18,
+                     orientation: Literal["visibility", "spectral", "mst"] = "visibility", normal_neighbors: int = 18,
                      threads: int = 0) -> PointCloud: ...
 def find_outliers(points: Union[ArrayLike, PointCloud, Any], *, ratio: float = 3.0,
                   neighbors: int = 16) -> npt.NDArray[np.bool_]: ...

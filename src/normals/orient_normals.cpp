@@ -98,7 +98,7 @@ struct SignedUnionFind {
 }  // namespace
 
 std::vector<int> orient_segments(const std::vector<Vec3>& points, std::vector<Vec3>& normals,
-                                 int neighbors) {
+                                 int neighbors, const std::vector<double>* votes) {
   const detail::NearestNeighbors knn(points);
   struct Edge {
     double alignment;  // |n_i . n_j|
@@ -121,13 +121,27 @@ std::vector<int> orient_segments(const std::vector<Vec3>& points, std::vector<Ve
                    [](const Edge& a, const Edge& b) { return a.alignment > b.alignment; });
   SignedUnionFind sets(points.size());
   std::vector<std::size_t> size(points.size(), 1);
+  // Each segment's votes, summed in its root's orientation.
+  std::vector<double> vote = votes ? *votes : std::vector<double>();
+  const auto confident = [&](int root, double v) {
+    return size[root] > static_cast<std::size_t>(2 * neighbors) &&
+           std::abs(v) >= kConfidentVote * static_cast<double>(size[root]);
+  };
   const auto join = [&](const Edge& e, std::size_t below) {
     const auto [ri, pi] = sets.find(e.i);
     const auto [rj, pj] = sets.find(e.j);
     if (ri == rj || std::min(size[ri], size[rj]) >= below) return;
     const std::uint8_t opposite = normals[e.i].dot(normals[e.j]) < 0;
+    const std::uint8_t parity = pi ^ pj ^ opposite;
+    if (votes) {
+      // Two segments whose own votes are clear and say the link is wrong stay
+      // apart: one wrong link would otherwise turn a whole region.
+      const double vj = parity ? -vote[rj] : vote[rj];
+      if (confident(ri, vote[ri]) && confident(rj, vj) && (vote[ri] > 0) != (vj > 0)) return;
+      vote[ri] += vj;
+    }
     sets.parent[rj] = ri;
-    sets.parity[rj] = pi ^ pj ^ opposite;
+    sets.parity[rj] = parity;
     size[ri] += size[rj];
   };
   for (const Edge& e : reliable) join(e, points.size() + 1);

@@ -16,16 +16,11 @@ namespace {
 
 // Design (b) of issue 17. A coarse progressive run of the spectral solver,
 // which ignores the normals' signs (Eq. 16), gives f < 0 inside; each normal
-// is turned towards increasing f, comparing f a short step on either side of
-// its sample. Coarse (4x the target edge, a few seconds), that is right over
-// most of the surface but not across parts thinner than its tets; so it only
-// votes: the segments over which the normals' relative signs are reliable
-// (orient_segments) each take the sign of their majority.
-void orient_by_spectral_vote(PointSet& input, const ReconstructOptions& options,
-                             std::size_t& segments) {
-  const std::vector<int> segment =
-      orient_segments(input.points, input.normals, options.normal_neighbors);
-
+// votes +1 when it points towards increasing f, comparing f a short step on
+// either side of its sample, -1 otherwise. Coarse (4x the target edge, a few
+// seconds), that is right over most of the surface but not across parts
+// thinner than its tets; so it only votes, by segments.
+std::vector<double> spectral_votes(const PointSet& input, const ReconstructOptions& options) {
   ReconstructOptions coarse = options;
   coarse.normals = NormalsMode::kKeep;
   coarse.outliers.ratio = 0;  // already dropped
@@ -51,19 +46,79 @@ void orient_by_spectral_vote(PointSet& input, const ReconstructOptions& options,
   if (run.cancelled) throw Cancelled{};
   const Domain& domain = run.domain;
   const double step = 0.25 * edge;
-  std::vector<double> vote(input.size(), 0.0);
+  std::vector<double> vote(input.size());
   for (std::size_t i = 0; i < input.size(); ++i) {
     const Vec3& p = input.points[i];
     const Vec3& n = input.normals[i];
     const double outside = domain.interpolate(p + step * n, domain.f());
     const double inside = domain.interpolate(p - step * n, domain.f());
-    vote[segment[i]] += outside > inside ? 1 : -1;
+    vote[i] = outside > inside ? 1 : -1;
   }
-  segments = 0;
+  return vote;
+}
+
+// Flips every segment whose summed vote is negative; returns the number of segments.
+std::size_t turn_segments(PointSet& input, const std::vector<int>& segment,
+                          const std::vector<double>& vote) {
+  std::size_t segments = 0;
   for (std::size_t i = 0; i < input.size(); ++i) {
     segments += segment[i] == static_cast<int>(i);
     if (vote[segment[i]] < 0) input.normals[i] = -input.normals[i];
   }
+  return segments;
+}
+
+// The segments over which the normals' relative signs are reliable
+// (orient_segments) each take the sign of their points' spectral majority.
+void orient_by_spectral_vote(PointSet& input, const ReconstructOptions& options,
+                             std::size_t& segments) {
+  const std::vector<int> segment =
+      orient_segments(input.points, input.normals, options.normal_neighbors);
+  const std::vector<double> votes = spectral_votes(input, options);
+  std::vector<double> vote(input.size(), 0.0);
+  for (std::size_t i = 0; i < input.size(); ++i) vote[segment[i]] += votes[i];
+  segments = turn_segments(input, segment, vote);
+}
+
+// Each segment takes the sign of the sum of its points' visibility votes: the
+// side of the surface from which more rays escape is the outside. At most
+// about kVisibilitySamples points vote, every stride-th. A one-sided scan is
+// open on both sides, so its votes are unclear: when the segments whose mean
+// vote is under kConfidentVote hold more than kUnclearShare of the points,
+// those take the spectral majority instead.
+constexpr std::size_t kVisibilitySamples = 200000;
+constexpr double kUnclearShare = 0.25;
+void orient_by_visibility_vote(PointSet& input, const ReconstructOptions& options,
+                               NormalsReport& report) {
+  std::vector<std::size_t> samples;
+  const std::size_t stride = 1 + input.size() / kVisibilitySamples;
+  for (std::size_t i = 0; i < input.size(); i += stride) samples.push_back(i);
+  const std::vector<double> votes =
+      visibility_votes(input.points, input.normals, samples, average_spacing(input));
+  std::vector<double> own(input.size(), 0.0);  // for the normals as they were, per point
+  for (std::size_t s = 0; s < samples.size(); ++s) own[samples[s]] = stride * votes[s];
+  const std::vector<Vec3> before = input.normals;
+  const std::vector<int> segment =
+      orient_segments(input.points, input.normals, options.normal_neighbors, &own);
+  std::vector<double> vote(input.size(), 0.0);
+  std::vector<std::size_t> size(input.size(), 0);
+  for (std::size_t i = 0; i < input.size(); ++i) {
+    ++size[segment[i]];
+    vote[segment[i]] += input.normals[i].dot(before[i]) < 0 ? -own[i] : own[i];
+  }
+  std::size_t unclear = 0;
+  for (std::size_t i = 0; i < input.size(); ++i)
+    unclear += std::abs(vote[segment[i]]) < kConfidentVote * static_cast<double>(size[segment[i]]);
+  if (static_cast<double>(unclear) > kUnclearShare * static_cast<double>(input.size())) {
+    const std::vector<double> spectral = spectral_votes(input, options);
+    std::vector<double> majority(input.size(), 0.0);
+    for (std::size_t i = 0; i < input.size(); ++i) majority[segment[i]] += spectral[i];
+    for (std::size_t r = 0; r < input.size(); ++r)
+      if (size[r] > 0 && std::abs(vote[r]) < kConfidentVote * static_cast<double>(size[r]))
+        vote[r] = majority[r];
+    report.unclear = unclear;
+  }
+  report.segments = turn_segments(input, segment, vote);
 }
 
 }  // namespace
@@ -109,6 +164,9 @@ const PointSet& prepare_normals(const PointSet& points, const ReconstructOptions
       break;
     case Orientation::kSpectral:
       orient_by_spectral_vote(guide, options, report.segments);
+      break;
+    case Orientation::kVisibility:
+      orient_by_visibility_vote(guide, options, report);
       break;
   }
   // The normals handed on are fitted to the points themselves (the guide's,

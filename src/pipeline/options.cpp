@@ -98,11 +98,14 @@ std::vector<OptionSpec> make_specs() {
       [](ReconstructOptions& o) -> NormalsMode& { return o.normals; }, to_string(d.normals)));
   s.push_back(choice<Orientation>(
       "orientation",
-      "How estimated or re-oriented normals get their signs: spectral (segments of "
-      "consistent normals, each turned by its majority along the gradient of a coarse run of "
-      "the spectral solver, which needs no orientation) or mst (propagation along a minimum "
+      "How estimated or re-oriented normals get their signs: visibility (segments of "
+      "consistent normals, each turned towards the side from which more rays escape past the "
+      "points: the outside, of closed shapes and open scans alike; where most are seen from "
+      "both sides, as in a one-sided scan, those take the spectral vote), spectral (the same "
+      "segments, each turned by its majority along the gradient of a coarse run of the "
+      "spectral solver, which needs no orientation) or mst (propagation along a minimum "
       "spanning tree of the neighbour graph, the peers' method)",
-      {"spectral", "mst"}, parse_orientation,
+      {"visibility", "spectral", "mst"}, parse_orientation,
       [](ReconstructOptions& o) -> Orientation& { return o.orientation; },
       to_string(d.orientation)));
   s.push_back(integer("normal-neighbors",

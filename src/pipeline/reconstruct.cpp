@@ -392,7 +392,8 @@ constexpr EnumNames<NormalsMode> kNormalsModes[] = {{NormalsMode::kKeep, "keep"}
                                                     {NormalsMode::kOrient, "orient"},
                                                     {NormalsMode::kEstimate, "estimate"}};
 constexpr EnumNames<Orientation> kOrientations[] = {{Orientation::kMst, "mst"},
-                                                    {Orientation::kSpectral, "spectral"}};
+                                                    {Orientation::kSpectral, "spectral"},
+                                                    {Orientation::kVisibility, "visibility"}};
 
 }  // namespace
 

@@ -38,6 +38,7 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
       << ", \"flipped\": " << result.normals.flipped
       << ", \"unreached\": " << result.normals.unreached
       << ", \"segments\": " << result.normals.segments
+      << ", \"unclear\": " << result.normals.unclear
       << ", \"filled\": " << result.normals.filled
       << ", \"seconds\": " << number(result.normals.seconds) << "},\n"
       << "  \"outliers\": {\"ratio\": " << number(result.outliers.ratio)
@@ -161,12 +162,15 @@ std::string normals_note(const Result& result) {
   std::string line = std::string("normals ") +
                      (n.estimated ? "estimated by jet fitting" + scale + " and " : "") +
                      "oriented " +
-                     (n.orientation == Orientation::kMst
-                          ? "along a minimum spanning tree"
-                          : std::to_string(n.segments) +
-                                " segments by a coarse spectral run's gradient") +
+                     (n.orientation == Orientation::kMst ? "along a minimum spanning tree"
+                      : n.orientation == Orientation::kSpectral
+                          ? std::to_string(n.segments) +
+                                " segments by a coarse spectral run's gradient"
+                          : std::to_string(n.segments) + " segments towards their open side") +
                      " (--normals, --orientation): " + std::to_string(n.flipped) + " flipped";
   if (n.unreached > 0) line += ", " + std::to_string(n.unreached) + " not reached by the tree";
+  if (n.unclear > 0)
+    line += ", " + std::to_string(n.unclear) + " seen from both sides turned by a coarse spectral run";
   char seconds[32];
   std::snprintf(seconds, sizeof seconds, " in %.1f s", n.seconds);
   return line + seconds;
