@@ -9,7 +9,8 @@ bare points. Per run: topology (closed, manifold, components, genus against the 
 Chamfer-L1 against the ground truth (pdd compare, 100k samples), mean min angle, wall time
 and peak memory; and the ratios against the true-normals run.
 
-    bash scripts/build.sh && /usr/bin/python3 bench/unoriented.py [--only REGEX] [--designs mst,mst+solve]
+    bash scripts/build.sh && /usr/bin/python3 bench/unoriented.py [--only REGEX] [--designs spectral,visibility,mst]
+        [--pdd BIN] [--output FILE]
 
 Writes bench/results/unoriented.md (also printed).
 """
@@ -71,7 +72,10 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--only", default="")
     parser.add_argument("--designs", default="spectral,mst")
+    parser.add_argument("--pdd", default=str(pdd), help="the binary (default build/pdd)")
+    parser.add_argument("--output", default=str(root / "bench" / "results" / "unoriented.md"))
     args = parser.parse_args()
+    globals()["pdd"] = pathlib.Path(args.pdd)
     designs = args.designs.split(",")
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -136,7 +140,7 @@ def main():
                      f"{np.mean(t):.2f}, {max(t):.2f} |")
     text = "\n".join(lines) + "\n"
     print(text)
-    (root / "bench" / "results" / "unoriented.md").write_text(text)
+    pathlib.Path(args.output).write_text(text)
 
 
 def format_row(row, reference, markdown=False):
