@@ -163,10 +163,10 @@ std::string normals_note(const Result& result) {
                      (n.estimated ? "estimated by jet fitting" + scale + " and " : "") +
                      "oriented " +
                      (n.orientation == Orientation::kMst ? "along a minimum spanning tree"
-                      : n.orientation == Orientation::kSpectral
-                          ? std::to_string(n.segments) +
-                                " segments by a coarse spectral run's gradient"
-                          : std::to_string(n.segments) + " segments towards their open side") +
+                      : std::to_string(n.segments) + (n.segments == 1 ? " segment" : " segments") +
+                            (n.orientation == Orientation::kSpectral
+                                 ? " by a coarse spectral run's gradient"
+                                 : " towards their open side")) +
                      " (--normals, --orientation): " + std::to_string(n.flipped) + " flipped";
   if (n.unreached > 0) line += ", " + std::to_string(n.unreached) + " not reached by the tree";
   if (n.unclear > 0)
