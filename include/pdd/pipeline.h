@@ -44,10 +44,10 @@ std::string to_string(NormalsMode mode);
 
 // How estimated or re-oriented normals get their signs.
 enum class Orientation {
-  kMst,       // propagation along a minimum spanning tree (normals.h, the peers' method)
-  kSpectral,  // segments of reliably consistent normals, each turned by the majority of
-              // its points along the gradient of a coarse run of the spectral solver
-              // (§3.5, Eq. 16-17), which needs no orientation
+  kMst,         // propagation along a minimum spanning tree (normals.h, the peers' method)
+  kSpectral,    // segments of reliably consistent normals, each turned by the majority of
+                // its points along the gradient of a coarse run of the spectral solver
+                // (§3.5, Eq. 16-17), which needs no orientation
   kVisibility,  // the same segments, each turned by the majority of its points towards
                 // the side from which more rays escape past the points to infinity
 };

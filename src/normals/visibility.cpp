@@ -17,9 +17,9 @@
 namespace pdd {
 namespace {
 
-constexpr int kRays = 16;        // per side of each sample
+constexpr int kRays = 16;            // per side of each sample
 constexpr int kRadiusNeighbors = 6;  // a point blocks rays within its mean distance to these
-constexpr double kSkip = 3;      // a ray leaves its own sheet (this many radii) before it can be blocked
+constexpr double kSkip = 3;          // radii a ray travels (out of its own sheet) unblocked
 constexpr std::uint64_t kMaxCells = std::uint64_t(1) << 28;  // 32 MB of bits
 
 struct Occupancy {
@@ -36,7 +36,8 @@ struct Occupancy {
     return (static_cast<std::uint64_t>(c[2]) * dims[1] + c[1]) * dims[0] + c[0];
   }
   void cell_of(const Vec3& p, std::int64_t c[3]) const {
-    for (int a = 0; a < 3; ++a) c[a] = static_cast<std::int64_t>(std::floor((p[a] - low[a]) / cell));
+    for (int a = 0; a < 3; ++a)
+      c[a] = static_cast<std::int64_t>(std::floor((p[a] - low[a]) / cell));
   }
   bool occupied(const std::int64_t c[3]) const {
     const std::uint64_t i = index(c);
