@@ -66,11 +66,11 @@ constexpr double kConfidentVote = 0.25;
 // For each of the points listed in `samples`: the share of rays around +n that
 // leave the points' bounding box without passing a point, less that around -n,
 // in [-1, 1] (the open side is the outside). The rays march through a grid of
-// cells of 1.5 `spacing` (the average spacing), blocked by the cells within
-// each point's mean distance to its 6 nearest.
+// cells of 1.5 average spacings, blocked by the cells within each point's mean
+// distance to its 6 nearest (whose mean is that average spacing).
 std::vector<double> visibility_votes(const std::vector<Vec3>& points,
                                      const std::vector<Vec3>& normals,
-                                     const std::vector<std::size_t>& samples, double spacing);
+                                     const std::vector<std::size_t>& samples);
 
 // Replaces the zero normals ((0, 0, 0): none, as some scanners write it) by
 // ones estimated by jet fitting over `neighbors` nearest points, each turned to

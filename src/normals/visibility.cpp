@@ -114,7 +114,7 @@ double open_share(const Occupancy& grid, const Vec3& origin, const Vec3& axis, d
 
 std::vector<double> visibility_votes(const std::vector<Vec3>& points,
                                      const std::vector<Vec3>& normals,
-                                     const std::vector<std::size_t>& samples, double spacing) {
+                                     const std::vector<std::size_t>& samples) {
   std::vector<double> votes(samples.size(), 0.0);
   if (points.empty() || samples.empty()) return votes;
   const detail::NearestNeighbors knn(points);
@@ -125,6 +125,8 @@ std::vector<double> visibility_votes(const std::vector<Vec3>& points,
     for (const int j : near) sum += (points[j] - points[i]).norm();
     radius[i] = sum / std::max<double>(1, static_cast<double>(near.size()) - 1);
   });
+  double spacing = 0;  // the average spacing (as average_spacing, sizing.h), summed in order
+  for (const double r : radius) spacing += r / static_cast<double>(points.size());
   const Occupancy grid = occupy(points, radius, 1.5 * spacing);
   tbb::parallel_for(std::size_t(0), samples.size(), [&](std::size_t s) {
     const Vec3& p = points[samples[s]];

@@ -94,7 +94,7 @@ void orient_by_visibility_vote(PointSet& input, const ReconstructOptions& option
   const std::size_t stride = 1 + input.size() / kVisibilitySamples;
   for (std::size_t i = 0; i < input.size(); i += stride) samples.push_back(i);
   const std::vector<double> votes =
-      visibility_votes(input.points, input.normals, samples, average_spacing(input));
+      visibility_votes(input.points, input.normals, samples);
   std::vector<double> own(input.size(), 0.0);  // for the normals as they were, per point
   for (std::size_t s = 0; s < samples.size(); ++s) own[samples[s]] = stride * votes[s];
   const std::vector<Vec3> before = input.normals;
