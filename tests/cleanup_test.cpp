@@ -129,6 +129,49 @@ TEST(Cleanup, LeavesAFoldAlone) {
   EXPECT_EQ(m.faces, faces);
 }
 
+// A cap (c just off the middle of ab) folded 45 degrees against its
+// neighbour: not flat, but flipping ab to cd moves the surface by less than a
+// tenth of ab, so the flip is made (and not with max_flip_deviation 0).
+TEST(Cleanup, FlipsACapOnACreaseWhenThatBarelyMovesTheSurface) {
+  TriangleMesh m;
+  m.vertices = {Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(2, 0.1, 0), Vec3(2, -2, 2)};
+  m.faces = {{0, 1, 2}, {1, 0, 3}};
+  TriangleMesh kept = m;
+  CleanupOptions strict;
+  strict.max_flip_deviation = 0;
+  EXPECT_EQ(cleanup_isosurface(kept, strict).flips, 0);
+  EXPECT_EQ(cleanup_isosurface(m).flips, 1);
+  EXPECT_GT(triangle_quality(m).min_angle, 10 * triangle_quality(kept).min_angle);
+  for (const auto& f : m.faces)
+    EXPECT_TRUE(std::count(f.begin(), f.end(), 2) && std::count(f.begin(), f.end(), 3));
+
+  CleanupOptions bad;
+  bad.max_flip_deviation = -0.1;
+  EXPECT_THROW(cleanup_isosurface(m, bad), std::invalid_argument);
+}
+
+// A needle (u, v, c) whose far corner c has valence three inside the tall
+// triangle (u, v, x): collapsing uv breaks the link condition (x is a third
+// common neighbour), so c is removed and its three triangles become one. The
+// triangles beyond uv are folded up; vx and xu are on the border, where no
+// flip reaches c.
+TEST(Cleanup, RemovesAValenceThreeCornerThatBlocksANeedlesCollapse) {
+  TriangleMesh m;
+  const Vec3 u(0, 0, 0), v(0.1, 0, 0), c(0.05, 1, 0), x(0.05, 3, 0);
+  m.vertices = {u, v, c, x, Vec3(0.05, -1, 2), Vec3(1, -0.5, 2), Vec3(-1, -0.5, 2)};
+  m.faces = {{0, 1, 2}, {1, 3, 2}, {3, 0, 2}, {1, 0, 4}, {1, 4, 5}, {0, 6, 4}};
+  CleanupOptions options;
+  options.relax_rounds = 0;
+  const CleanupReport report = cleanup_isosurface(m, options);
+  EXPECT_EQ(report.collapses, 1);
+  EXPECT_EQ(m.vertices.size(), 6u);
+  EXPECT_EQ(m.faces.size(), 4u);
+  EXPECT_EQ(std::count(m.vertices.begin(), m.vertices.end(), c), 0);
+  const SurfaceTopology topology = surface_topology(m);
+  EXPECT_TRUE(topology.manifold);
+  EXPECT_EQ(topology.euler_characteristic, 1);  // still a disc
+}
+
 TEST(Cleanup, RejectsBadInput) {
   TriangleMesh m = squashed_pair(0.0);
   CleanupOptions o;

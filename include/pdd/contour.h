@@ -111,9 +111,12 @@ int cut_triangle_waists(TriangleMesh& mesh);
 
 struct CleanupOptions {
   double max_dihedral_degrees = 30;  // only where neighbouring triangles turn by at most this
+  double max_flip_deviation = 0.1;   // ... or, for flips, where the surface moves by at most
+                                     // this fraction of the flipped edge's length (caps)
   double needle_angle_degrees = 20;  // triangles with a smaller angle and a shortest edge at
                                      // most half the next are needles: that edge is collapsed
-  int relax_rounds = 3;  // rounds of vertex moves toward their neighbours' centroid, then flips
+  int relax_rounds = 3;  // rounds of vertex moves toward their neighbours' centroid, then
+                         // collapses and flips
 };
 
 struct CleanupReport {
@@ -122,17 +125,19 @@ struct CleanupReport {
   int moves = 0;  // vertices moved toward their neighbours' centroid
 };
 
-// Improves the triangles of a closed or open oriented manifold mesh where it
-// is nearly flat: Lawson edge flips (the shared edge of two triangles is
-// swapped when the angles opposite it sum to more than pi), then collapses
-// of the shortest edge of needles to its midpoint (kept only if the link
+// Improves the triangles of a closed or open oriented manifold mesh: Lawson
+// edge flips (the shared edge of two triangles is swapped when the angles
+// opposite it sum to more than pi; where they turn more than the dihedral
+// bound, only if the flip barely moves the surface), then collapses of the
+// shortest edge of needles to its midpoint or an end (kept only if the link
 // condition holds and no other triangle turns by more than the dihedral
-// bound), then flips again; then `relax_rounds` rounds of vertex moves (each
+// bound; a valence-three corner that breaks the link condition is removed
+// instead), then flips again; then `relax_rounds` rounds of vertex moves (each
 // inner vertex halfway to its neighbours' centroid, on a quadric fitted to
-// them, only where that raises its smallest angle) and flips. Orientation,
-// manifoldness and the topology are kept; vertices removed by collapses are
-// dropped and the rest keep their order. Throws std::invalid_argument if the mesh is not an oriented
-// manifold or an option is out of range.
+// them, only where that raises its smallest angle), collapses and flips.
+// Orientation, manifoldness and the topology are kept; removed vertices are
+// dropped and the rest keep their order. Throws std::invalid_argument if the
+// mesh is not an oriented manifold or an option is out of range.
 CleanupReport cleanup_isosurface(TriangleMesh& mesh, const CleanupOptions& options = {});
 
 // Swaps the shared edge of two adjacent triangles whose normals differ by at

@@ -1,16 +1,18 @@
-// Clean-up of the final isosurface where it is nearly flat: Lawson edge flips,
-// collapses of the short edge of needles, and vertices relaxed toward their
-// neighbours' centroid. Marching tetrahedra ties the connectivity to the
-// tets' edges, so even with crossings at the midpoints (§3.3) an irregular
-// crossing tet leaves a cap or a needle that no move of the domain's vertices
-// fixes (docs/benchmarks.md, "Isosurface clean-up"). CGAL's Surface_mesh
-// and Euler operations keep the halfedge bookkeeping.
+// Clean-up of the final isosurface: Lawson edge flips, collapses of the short
+// edge of needles, and vertices relaxed toward their neighbours' centroid,
+// where the surface is nearly flat or the change barely moves it. Marching
+// tetrahedra ties the connectivity to the tets' edges, so even with crossings
+// at the midpoints (§3.3) an irregular crossing tet leaves a cap or a needle
+// that no move of the domain's vertices fixes (docs/benchmarks.md,
+// "Isosurface clean-up"). CGAL's Surface_mesh and Euler operations keep the
+// halfedge bookkeeping.
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/Euler_operations.h>
-#include <Eigen/Cholesky>
+#include <CGAL/squared_distance_3.h>
 #include <pdd/contour.h>
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -98,8 +100,10 @@ class Cleaner {
   }
 
   // Needles (shortest_edge_if_needle) lose their shortest edge, collapsed to
-  // its midpoint, when the link condition holds and no remaining triangle
-  // turns by more than max_dihedral_degrees.
+  // its midpoint, or else to one of its ends, when the link condition holds
+  // and no remaining triangle turns by more than max_dihedral_degrees. Where
+  // the link condition fails because a triangle's far corner has valence
+  // three, that corner is removed instead (its three triangles become one).
   int collapse_needles() {
     int collapses = 0;
     for (Face f : std::vector<Face>(m_.faces().begin(), m_.faces().end())) {
@@ -107,11 +111,27 @@ class Cleaner {
       if (m_.is_removed(f)) continue;
       const Halfedge h = shortest_edge_if_needle(f);
       if (h == Mesh::null_halfedge()) continue;
-      if (!CGAL::Euler::does_satisfy_link_condition(m_.edge(h), m_)) continue;
-      const Vec3 midpoint = 0.5 * (position(m_.source(h)) + position(m_.target(h)));
-      if (!collapse_keeps_orientation(h, midpoint)) continue;
+      if (!CGAL::Euler::does_satisfy_link_condition(m_.edge(h), m_)) {
+        for (Halfedge side : {h, m_.opposite(h)})
+          if (!m_.is_border(side) && remove_valence_three(m_.target(m_.next(side)))) {
+            ++collapses;
+            break;
+          }
+        continue;
+      }
+      const Vec3 a = position(m_.source(h)), b = position(m_.target(h));
+      const Vec3 midpoint = 0.5 * (a + b);
+      Vec3 target;
+      if (collapse_keeps_orientation(h, midpoint))
+        target = midpoint;
+      else if (collapse_keeps_orientation(h, a))
+        target = a;
+      else if (collapse_keeps_orientation(h, b))
+        target = b;
+      else
+        continue;
       const Vertex kept = CGAL::Euler::collapse_edge(m_.edge(h), m_);
-      m_.point(kept) = Kernel::Point_3(midpoint.x(), midpoint.y(), midpoint.z());
+      m_.point(kept) = point(target);
       ++collapses;
     }
     return collapses;
@@ -195,11 +215,56 @@ class Cleaner {
     if (c == d || m_.halfedge(c, d).is_valid()) return false;  // would not stay manifold
     const Vec3 pa = position(a), pb = position(b), pc = position(c), pd = position(d);
     const Vec3 n1 = unit_normal(pa, pb, pc), n2 = unit_normal(pb, pa, pd);
-    if (n1.dot(n2) < min_cosine_) return false;                              // not flat enough
+    if (n1.dot(n2) < min_cosine_ &&
+        flip_deviation(pa, pb, pc, pd) > options_.max_flip_deviation * (pb - pa).norm())
+      return false;  // neither nearly flat nor a flip that barely moves the surface
     if (!opposite_angles_exceed_pi(pc, pd, pa, pb)) return false;  // Delaunay already
     // The new triangles (c, a, d) and (d, b, c) must face the same way.
     const Vec3 n = n1 + n2;
     return unit_normal(pc, pa, pd).dot(n) > 0 && unit_normal(pd, pb, pc).dot(n) > 0;
+  }
+
+  // How far a flip of (a, b) to (c, d) moves the surface: the larger of the
+  // distances from the new edge's midpoint to the old triangles and from the
+  // old edge's midpoint to the new ones (a cap's flip barely moves it).
+  static double flip_deviation(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+    const auto squared = [](const Vec3& x, const Vec3& p, const Vec3& q, const Vec3& r) {
+      return CGAL::squared_distance(point(x), Kernel::Triangle_3(point(p), point(q), point(r)));
+    };
+    const Vec3 new_mid = 0.5 * (c + d), old_mid = 0.5 * (a + b);
+    const double to_old = std::min(squared(new_mid, a, b, c), squared(new_mid, b, a, d));
+    const double to_new = std::min(squared(old_mid, c, a, d), squared(old_mid, d, b, c));
+    return std::sqrt(std::max(to_old, to_new));
+  }
+
+  // Removes v if it is an inner vertex of valence three whose one remaining
+  // triangle turns from none of its three by more than max_dihedral_degrees
+  // (and is not already a face, as in a tetrahedron).
+  bool remove_valence_three(Vertex v) {
+    if (m_.is_border(v) || m_.degree(v) != 3) return false;
+    std::array<Vertex, 3> ring;
+    std::array<Halfedge, 3> link;  // the edge of each triangle opposite v
+    std::array<Vec3, 3> normals;
+    int i = 0;
+    for (Halfedge h : m_.halfedges_around_target(m_.halfedge(v))) {
+      ring[i] = m_.source(h);
+      link[i] = m_.prev(h);
+      normals[i] =
+          unit_normal(position(m_.source(h)), position(v), position(m_.target(m_.next(h))));
+      ++i;
+    }
+    for (Halfedge l : link) {
+      const Halfedge outside = m_.opposite(l);
+      if (m_.is_border(outside)) continue;
+      const Vertex corner = m_.target(m_.next(outside));
+      if (std::find(ring.begin(), ring.end(), corner) != ring.end()) return false;
+    }
+    Vec3 n = unit_normal(position(ring[0]), position(ring[1]), position(ring[2]));
+    if (n.dot(normals[0] + normals[1] + normals[2]) < 0) n = -n;
+    for (const Vec3& m : normals)
+      if (n.dot(m) < min_cosine_) return false;
+    CGAL::Euler::remove_center_vertex(m_.halfedge(v), m_);
+    return true;
   }
 
   // The shortest edge of f if f is a needle: its smallest angle is under
@@ -255,6 +320,9 @@ CleanupReport cleanup_isosurface(TriangleMesh& mesh, const CleanupOptions& optio
     throw std::invalid_argument(
         "cleanup_isosurface: the dihedral bound must be in [0, 90) degrees, got " +
         std::to_string(options.max_dihedral_degrees));
+  if (!(options.max_flip_deviation >= 0))
+    throw std::invalid_argument("cleanup_isosurface: max_flip_deviation must be >= 0, got " +
+                                std::to_string(options.max_flip_deviation));
   if (options.relax_rounds < 0)
     throw std::invalid_argument("cleanup_isosurface: relax_rounds must be >= 0, got " +
                                 std::to_string(options.relax_rounds));
@@ -281,6 +349,7 @@ CleanupReport cleanup_isosurface(TriangleMesh& mesh, const CleanupOptions& optio
   if (report.collapses > 0) report.flips += cleaner.flip_all();
   for (int round = 0; round < options.relax_rounds; ++round) {
     report.moves += cleaner.relax();
+    report.collapses += cleaner.collapse_needles();  // the moves leave some
     report.flips += cleaner.flip_all();
   }
 
