@@ -8,7 +8,7 @@ area-uniform, exact normals), sparse (2k), noise05 / noise10 (Gaussian offsets a
 radius 8 % of the diagonal emptied) and vardens (one half of the shape ten times sparser). Then
 pdd with default options, PoissonRecon and SSDRecon at depth 8 (../shared/anchors/bin) on each:
 topology right (closed, manifold, the truth's components and genus), Chamfer-L1 and Hausdorff to
-the truth, mean min angle, wall time.
+the truth, mean min angle, share of triangles under 20°, wall time.
 
   bench/cgal_shapes.py [--pdd PATH] [--only REGEX] [--no-peers] [--keep DIR] [--out FILE]
                        [-- extra pdd reconstruct options]
@@ -130,7 +130,8 @@ def measure(pdd, out, gt, truth):
     right = bool(t["closed"] and t["manifold"] and (t["components"], t["genus"]) == truth)
     return {"right": right, "genus": t["genus"], "components": t["components"],
             "closed": t["closed"], "chamfer": c["chamfer_l1_relative"] * 1e3, "hausdorff": c["hausdorff_relative"] * 100,
-            "angle": q["triangles"]["mean_min_angle"], "faces": q["triangles"]["count"]}
+            "angle": q["triangles"]["mean_min_angle"],
+            "below20": q["triangles"]["fraction_min_angle_below_20"] * 100, "faces": q["triangles"]["count"]}
 
 
 def main():
@@ -156,7 +157,8 @@ def main():
     lines = [f"# CGAL shapes (bench/cgal_shapes.py {' '.join(args.extra)}, commit {commit}, "
              f"{os.cpu_count()} cores, {time.strftime('%Y-%m-%d')})", "",
              "| input | tool | topology right | components | genus | Chamfer-L1 (1e-3) | Hausdorff (%) "
-             "| mean min angle | faces | seconds |", "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+             "| mean min angle | under 20° (%) | faces | seconds |",
+             "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     print("\n".join(lines), flush=True)
     for shape in SHAPES:
         gt, mesh = normalized_truth(shape, data)
@@ -178,11 +180,11 @@ def main():
                 row.update(input=name, tool=label, seconds=seconds, truth=truth)
                 rows.append(row)
                 if "failed" in row:
-                    line = f"| {name} | {label} | failed: {row['failed']} | | | | | | | {seconds:.1f} |"
+                    line = f"| {name} | {label} | failed: {row['failed']} | | | | | | | | {seconds:.1f} |"
                 else:
                     line = (f"| {name} | {label} | {'yes' if row['right'] else 'no'} | {row['components']} "
                             f"| {row['genus']} | {row['chamfer']:.3f} | {row['hausdorff']:.2f} "
-                            f"| {row['angle']:.1f} | {row['faces']} | {seconds:.1f} |")
+                            f"| {row['angle']:.1f} | {row['below20']:.2f} | {row['faces']} | {seconds:.1f} |")
                 lines.append(line)
                 print(line, flush=True)
     lines += ["", "Topology right, of the inputs run:"]
