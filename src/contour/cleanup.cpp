@@ -212,13 +212,14 @@ class Cleaner {
     const Vertex a = m_.source(h), b = m_.target(h);
     const Vertex c = m_.target(m_.next(h));
     const Vertex d = m_.target(m_.next(m_.opposite(h)));
-    if (c == d || m_.halfedge(c, d).is_valid()) return false;  // would not stay manifold
+    if (c == d) return false;
     const Vec3 pa = position(a), pb = position(b), pc = position(c), pd = position(d);
+    if (!opposite_angles_exceed_pi(pc, pd, pa, pb)) return false;  // Delaunay already
+    if (m_.halfedge(c, d).is_valid()) return false;                // would not stay manifold
     const Vec3 n1 = unit_normal(pa, pb, pc), n2 = unit_normal(pb, pa, pd);
     if (n1.dot(n2) < min_cosine_ &&
         flip_deviation(pa, pb, pc, pd) > options_.max_flip_deviation * (pb - pa).norm())
       return false;  // neither nearly flat nor a flip that barely moves the surface
-    if (!opposite_angles_exceed_pi(pc, pd, pa, pb)) return false;  // Delaunay already
     // The new triangles (c, a, d) and (d, b, c) must face the same way.
     const Vec3 n = n1 + n2;
     return unit_normal(pc, pa, pd).dot(n) > 0 && unit_normal(pd, pb, pc).dot(n) > 0;
@@ -278,12 +279,12 @@ class Cleaner {
     std::sort(edges.begin(), edges.end(),
               [](const auto& x, const auto& y) { return x.first < y.first; });
     const Halfedge shortest = edges[0].second;
+    if (!(edges[0].first <= 0.5 * edges[1].first)) return Mesh::null_halfedge();
     const double smallest_angle =
         angle(position(m_.target(m_.next(shortest))), position(m_.source(shortest)),
               position(m_.target(shortest)));
-    const bool needle = smallest_angle < radians(options_.needle_angle_degrees) &&
-                        edges[0].first <= 0.5 * edges[1].first;
-    return needle ? shortest : Mesh::null_halfedge();
+    return smallest_angle < radians(options_.needle_angle_degrees) ? shortest
+                                                                   : Mesh::null_halfedge();
   }
 
   // Every triangle around the two ends of h, but the two that vanish, keeps
