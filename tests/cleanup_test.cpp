@@ -172,6 +172,35 @@ TEST(Cleanup, RemovesAValenceThreeCornerThatBlocksANeedlesCollapse) {
   EXPECT_EQ(topology.euler_characteristic, 1);  // still a disc
 }
 
+// A needle (u, v, c) and its neighbour (v, u, d) on a plane, v's other
+// triangles tilted 20 degrees down. Under a 2-degree bound, moving v to the
+// midpoint of uv turns them too far, but moving u onto v turns nothing: the
+// edge is collapsed to v's end.
+TEST(Cleanup, CollapsesANeedleToTheEndThatKeepsItsNeighboursWhenTheMidpointWouldTurnThem) {
+  const Vec3 u(0, 0.1, 0), v(0, 0, 0);
+  TriangleMesh m;
+  m.vertices = {u,
+                v,
+                Vec3(0.5, 0.05, 0),
+                Vec3(0, 0.6, 0),
+                Vec3(-0.5, 0.05, 0),
+                Vec3(0.3, -0.4, -0.146),
+                Vec3(-0.3, -0.4, -0.146)};
+  m.faces = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 1}, {1, 4, 6}, {1, 6, 5}, {1, 5, 2}};
+  CleanupOptions options;
+  options.relax_rounds = 0;
+  options.max_flip_deviation = 0;
+  options.max_dihedral_degrees = 2;
+  const CleanupReport report = cleanup_isosurface(m, options);
+  EXPECT_EQ(report.collapses, 1);
+  EXPECT_EQ(report.flips, 0);
+  EXPECT_EQ(m.faces.size(), 5u);
+  EXPECT_EQ(std::count(m.vertices.begin(), m.vertices.end(), v), 1);
+  EXPECT_EQ(std::count(m.vertices.begin(), m.vertices.end(), u), 0);
+  EXPECT_EQ(std::count(m.vertices.begin(), m.vertices.end(), 0.5 * (u + v)), 0);
+  EXPECT_EQ(surface_topology(m).euler_characteristic, 1);
+}
+
 TEST(Cleanup, RejectsBadInput) {
   TriangleMesh m = squashed_pair(0.0);
   CleanupOptions o;
