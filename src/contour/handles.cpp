@@ -285,21 +285,40 @@ bool cap_holes(TriangleMesh& mesh, const std::vector<char>& removed) {
 // for the next pass (`deferred`). Returns the cuts.
 int cut_triangle_waists_once(TriangleMesh& mesh, bool& deferred) {
   const std::vector<std::array<int, 3>> across = face_neighbours(mesh);
-  std::vector<std::vector<int>> neighbours(mesh.vertices.size());
-  std::vector<std::vector<std::pair<int, int>>> out(mesh.vertices.size());  // u -> (w, face running u w)
-  for (int k = 0; k < static_cast<int>(mesh.faces.size()); ++k)
-    for (int i = 0; i < 3; ++i) {
-      const int u = mesh.faces[k][i], w = mesh.faces[k][(i + 1) % 3];
-      neighbours[u].push_back(w);
-      out[u].emplace_back(w, k);
-    }
-  for (auto& n : neighbours) {
-    std::sort(n.begin(), n.end());
-    n.erase(std::unique(n.begin(), n.end()), n.end());
+  // Flat per-vertex lists (millions of small vectors cost more to allocate
+  // than to fill): out[u] = (w, face running u w) in face order, and the
+  // sorted distinct w of each u.
+  const int nv = static_cast<int>(mesh.vertices.size());
+  std::vector<int> start(nv + 1, 0);
+  for (const auto& f : mesh.faces)
+    for (int u : f) ++start[u + 1];
+  for (int u = 0; u < nv; ++u) start[u + 1] += start[u];
+  std::vector<std::pair<int, int>> out(start[nv]);
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int k = 0; k < static_cast<int>(mesh.faces.size()); ++k)
+      for (int i = 0; i < 3; ++i) out[fill[mesh.faces[k][i]]++] = {mesh.faces[k][(i + 1) % 3], k};
   }
+  std::vector<int> nstart(nv + 1, 0), flat(out.size());
+  for (int u = 0; u < nv; ++u) {
+    const auto first = flat.begin() + nstart[u];
+    auto last = first;
+    for (int i = start[u]; i < start[u + 1]; ++i) *last++ = out[i].first;
+    std::sort(first, last);
+    nstart[u + 1] = nstart[u] + static_cast<int>(std::unique(first, last) - first);
+  }
+  struct Range {
+    const int* b;
+    const int* e;
+    const int* begin() const { return b; }
+    const int* end() const { return e; }
+  };
+  const auto neighbours = [&](int u) {
+    return Range{flat.data() + nstart[u], flat.data() + nstart[u + 1]};
+  };
   const auto left_face = [&](int u, int w) {
-    for (const auto& [x, k] : out[u])
-      if (x == w) return k;
+    for (int i = start[u]; i < start[u + 1]; ++i)
+      if (out[i].first == w) return out[i].second;
     return -1;
   };
   const auto runs = [&](int u, int w) { return left_face(u, w) >= 0; };
@@ -315,21 +334,23 @@ int cut_triangle_waists_once(TriangleMesh& mesh, bool& deferred) {
   deferred = false;
   for (int a = 0; a < static_cast<int>(mesh.vertices.size()); ++a) {
     if (a % 65536 == 0) detail::poll();
-    for (int b : neighbours[a]) {
+    const Range around_a = neighbours(a);
+    for (int b : around_a) {
       if (b <= a) continue;
-      for (int c : neighbours[b]) {
-        if (c <= b || !std::binary_search(neighbours[a].begin(), neighbours[a].end(), c)) continue;
+      for (int c : neighbours(b)) {
+        if (c <= b || !std::binary_search(around_a.begin(), around_a.end(), c)) continue;
         // Oriented a -> b -> c -> a along the faces on its left; a face (in either
         // orientation) on it, or an edge with other than two faces: not a waist.
-        if (!(runs(a, b) && runs(b, a) && runs(b, c) && runs(c, b) && runs(c, a) && runs(a, c)))
-          continue;
+        // (Most such cycles are faces: that test first.)
         const int left = left_face(a, b), right = left_face(b, a);
+        if (left < 0 || right < 0) continue;
         const auto has = [&](int k) {
           const auto& f = mesh.faces[k];
           return std::count(f.begin(), f.end(), a) + std::count(f.begin(), f.end(), b) +
                      std::count(f.begin(), f.end(), c) == 3;
         };
         if (has(left) || has(right)) continue;
+        if (!(runs(b, c) && runs(c, b) && runs(c, a) && runs(a, c))) continue;
         if (near_cut[a] || near_cut[b] || near_cut[c]) {
           deferred = true;
           continue;
@@ -363,8 +384,8 @@ int cut_triangle_waists_once(TriangleMesh& mesh, bool& deferred) {
         if (!two_sides) continue;
         for (int v : {a, b, c}) {
           on_barrier[v] = 1;
-          for (const auto& [w, k] : out[v])
-            for (int x : mesh.faces[k]) near_cut[x] = 1;
+          for (int i = start[v]; i < start[v + 1]; ++i)
+            for (int x : mesh.faces[out[i].second]) near_cut[x] = 1;
         }
         barriers.push_back(edge(a, b));
         barriers.push_back(edge(b, c));
