@@ -148,6 +148,8 @@ RemovedComponents remove_unsupported_components(TriangleMesh& mesh,
     throw std::invalid_argument("remove_unsupported_components: min_samples must be >= 0");
   if (min_samples == 0 || mesh.faces.empty() || samples.empty()) return {};
   const Components c = components(mesh);
+  // Only components but the largest can go: with one, the samples' queries are skipped.
+  if (std::count_if(c.faces.begin(), c.faces.end(), [](int n) { return n > 0; }) <= 1) return {};
   // Each sample supports the component of the output vertex nearest to it.
   std::vector<char> used(mesh.vertices.size(), 0);
   for (const auto& f : mesh.faces)
