@@ -10,9 +10,9 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/squared_distance_3.h>
+#include <Eigen/Cholesky>
 #include <pdd/contour.h>
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <array>
 #include <cmath>
