@@ -87,15 +87,43 @@ std::vector<std::array<int, 3>> face_neighbours(const TriangleMesh& mesh) {
   return across;
 }
 
+// Lists by vertex in compressed rows: at a million vertices, a std::vector
+// each costs more to allocate than to fill.
+struct Rows {
+  std::vector<int> offsets;  // |V| + 1
+  std::vector<int> items;
+  struct Range {
+    const int* first;
+    const int* last;
+    const int* begin() const { return first; }
+    const int* end() const { return last; }
+  };
+  Range operator[](int v) const {
+    return {items.data() + offsets[v], items.data() + offsets[v + 1]};
+  }
+};
+
+// The faces around each vertex, in increasing order.
+Rows faces_around_vertices(const TriangleMesh& mesh) {
+  const int n = static_cast<int>(mesh.vertices.size());
+  Rows rows;
+  rows.offsets.assign(n + 1, 0);
+  for (const auto& f : mesh.faces)
+    for (int v : f) ++rows.offsets[v + 1];
+  for (int v = 0; v < n; ++v) rows.offsets[v + 1] += rows.offsets[v];
+  rows.items.resize(rows.offsets[n]);
+  std::vector<int> fill(rows.offsets.begin(), rows.offsets.end() - 1);
+  for (int k = 0; k < static_cast<int>(mesh.faces.size()); ++k)
+    for (int v : mesh.faces[k]) rows.items[fill[v]++] = k;
+  return rows;
+}
+
 // Faces around each vertex, and the faces across each edge.
 struct Adjacency {
-  std::vector<std::vector<int>> vertex_faces;
+  Rows vertex_faces;
   std::vector<std::array<int, 3>> across;  // face_neighbours
   explicit Adjacency(const TriangleMesh& mesh)
-      : vertex_faces(mesh.vertices.size()), across(face_neighbours(mesh)) {
-    for (int k = 0; k < static_cast<int>(mesh.faces.size()); ++k)
-      for (int v : mesh.faces[k]) vertex_faces[v].push_back(k);
-  }
+      : vertex_faces(faces_around_vertices(mesh)), across(face_neighbours(mesh)) {}
 };
 
 // The faces of `in` (a mask) in groups connected through shared edges,
@@ -285,40 +313,28 @@ bool cap_holes(TriangleMesh& mesh, const std::vector<char>& removed) {
 // for the next pass (`deferred`). Returns the cuts.
 int cut_triangle_waists_once(TriangleMesh& mesh, bool& deferred) {
   const std::vector<std::array<int, 3>> across = face_neighbours(mesh);
-  // Flat per-vertex lists (millions of small vectors cost more to allocate
-  // than to fill): out[u] = (w, face running u w) in face order, and the
-  // sorted distinct w of each u.
+  // Around each vertex u: its faces, and the sorted distinct w of the edges u w
+  // that they run.
+  const Rows stars = faces_around_vertices(mesh);
+  const auto next_of = [&](int u, int k) {
+    const auto& f = mesh.faces[k];
+    return f[0] == u ? f[1] : f[1] == u ? f[2] : f[0];
+  };
   const int nv = static_cast<int>(mesh.vertices.size());
-  std::vector<int> start(nv + 1, 0);
-  for (const auto& f : mesh.faces)
-    for (int u : f) ++start[u + 1];
-  for (int u = 0; u < nv; ++u) start[u + 1] += start[u];
-  std::vector<std::pair<int, int>> out(start[nv]);
-  {
-    std::vector<int> fill(start.begin(), start.end() - 1);
-    for (int k = 0; k < static_cast<int>(mesh.faces.size()); ++k)
-      for (int i = 0; i < 3; ++i) out[fill[mesh.faces[k][i]]++] = {mesh.faces[k][(i + 1) % 3], k};
-  }
-  std::vector<int> nstart(nv + 1, 0), flat(out.size());
+  Rows neighbours;
+  neighbours.offsets.assign(nv + 1, 0);
+  neighbours.items.resize(stars.items.size());
   for (int u = 0; u < nv; ++u) {
-    const auto first = flat.begin() + nstart[u];
+    const auto first = neighbours.items.begin() + neighbours.offsets[u];
     auto last = first;
-    for (int i = start[u]; i < start[u + 1]; ++i) *last++ = out[i].first;
+    for (int k : stars[u]) *last++ = next_of(u, k);
     std::sort(first, last);
-    nstart[u + 1] = nstart[u] + static_cast<int>(std::unique(first, last) - first);
+    neighbours.offsets[u + 1] =
+        neighbours.offsets[u] + static_cast<int>(std::unique(first, last) - first);
   }
-  struct Range {
-    const int* b;
-    const int* e;
-    const int* begin() const { return b; }
-    const int* end() const { return e; }
-  };
-  const auto neighbours = [&](int u) {
-    return Range{flat.data() + nstart[u], flat.data() + nstart[u + 1]};
-  };
-  const auto left_face = [&](int u, int w) {
-    for (int i = start[u]; i < start[u + 1]; ++i)
-      if (out[i].first == w) return out[i].second;
+  const auto left_face = [&](int u, int w) {  // the face that runs u w
+    for (int k : stars[u])
+      if (next_of(u, k) == w) return k;
     return -1;
   };
   const auto runs = [&](int u, int w) { return left_face(u, w) >= 0; };
@@ -334,10 +350,10 @@ int cut_triangle_waists_once(TriangleMesh& mesh, bool& deferred) {
   deferred = false;
   for (int a = 0; a < static_cast<int>(mesh.vertices.size()); ++a) {
     if (a % 65536 == 0) detail::poll();
-    const Range around_a = neighbours(a);
+    const Rows::Range around_a = neighbours[a];
     for (int b : around_a) {
       if (b <= a) continue;
-      for (int c : neighbours(b)) {
+      for (int c : neighbours[b]) {
         if (c <= b || !std::binary_search(around_a.begin(), around_a.end(), c)) continue;
         // Oriented a -> b -> c -> a along the faces on its left; a face (in either
         // orientation) on it, or an edge with other than two faces: not a waist.
@@ -384,8 +400,8 @@ int cut_triangle_waists_once(TriangleMesh& mesh, bool& deferred) {
         if (!two_sides) continue;
         for (int v : {a, b, c}) {
           on_barrier[v] = 1;
-          for (int i = start[v]; i < start[v + 1]; ++i)
-            for (int x : mesh.faces[out[i].second]) near_cut[x] = 1;
+          for (int k : stars[v])
+            for (int x : mesh.faces[k]) near_cut[x] = 1;
         }
         barriers.push_back(edge(a, b));
         barriers.push_back(edge(b, c));
