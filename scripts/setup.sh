@@ -8,7 +8,7 @@ set -euo pipefail
 
 packages=(
   cmake g++ make
-  libcgal-dev libeigen3-dev libspectra-dev
+  libcgal-dev libeigen3-dev
   libsuitesparse-dev libopenblas-dev libtbb-dev
   libcli11-dev libgtest-dev libbenchmark-dev
   time jq  # bench/shared_data.sh: /usr/bin/time -v, JSON fields

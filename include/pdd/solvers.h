@@ -134,30 +134,46 @@ inline constexpr double kSsdMaxValueWeight = 6e4;
 
 // Spectral [ACTD07], Eqs. (16)-(17): the eigenvector of the largest
 // eigenvalue of
-//   [G^T S^T C S G] F = lambda [alpha/|X| Phi^T Phi + beta/l L + gamma l L M_V^-1 L] F,
+//   [G^T S^T C S G] F = lambda [alpha/|X| Phi^T Phi + beta/l L + gamma l L M_V^-1 L + T] F,
 // C_p = I + mu n_p n_p^T, each sample's term weighted by the volume of its
 // tet over the mean of those volumes (ACTD07's integral of
 // grad f^T C grad f; the same as Eq. (17) on a uniform mesh, and immune to
-// slivers, see spectral.cpp). The orientation of the normals is ignored. The
-// sign of F is chosen so that f > 0 on the boundary of the domain (outside).
-// Neither ACTD07 nor the paper gives weights; these are ours, measured on
-// the sphere, ellipsoid and torus of tests/solvers_test.cpp.
+// slivers, see spectral.cpp). T ties f to one value over the domain's outer
+// boundary (ours, see outer_tie). The orientation of the normals is ignored.
+// The sign of F is chosen so that f > 0 on the boundary of the domain
+// (outside). Neither ACTD07 nor the paper gives weights; these are ours,
+// measured on the test shapes and the shared data (docs/benchmarks.md, "The
+// spectral solver").
 struct SpectralOptions {
-  double alpha = 1e6;   // f(p) small at the samples. Must dominate gamma by ~1e5 or more: the
-                        // data term is all that makes a linear function lose to the
-                        // signed-distance-like one (measured: 1e4 fails on the torus); larger
-                        // values follow noise more (1e7 fails on the sphere with 1% noise)
+  double alpha = 0;     // f(p) small at the samples; 0: spectral_value_weight, from the input's
+                        // noise. Larger follows the points more closely and their noise too
+  double noise = -1;    // sigma of the automatic alpha; < 0: estimate_noise(points) at each solve
   double beta = 0.0;    // Dirichlet energy in the constraint (no measured benefit)
   double gamma = 1.0;   // bi-Laplacian energy in the constraint (ACTD07's smoothness)
   double mu = 10.0;     // anisotropy: gradients along n_p count 1 + mu times more. Measured on
                         // the test shapes: 0 to 100 give the same clean surfaces (the data term
                         // places the zero set); with 1% noise larger mu is slightly smoother
-  int krylov_size = 20;       // Lanczos basis size (Spectra's ncv)
-  int max_restarts = 1000;    // Lanczos restarts before SolverError
-  double tolerance = 1e-10;   // relative accuracy of the eigenvalue (Spectra)
+  double outer_tie = 1.0;     // weight of sum (f_i - f_j)^2 over the edges of the domain's outer
+                              // boundary, relative to the constraint's diagonal there (0: none).
+                              // The outside is one region: without the tie, thin parts (ears, a
+                              // base) came out as open sheets running to the boundary
+  int max_iterations = 2000;  // LOBPCG iterations before SolverError
+  double tolerance = 1e-8;    // |A f - lambda B f| / (lambda |B f|) of the eigenpair. 1e-6 moved
+                              // the loop's later domains (fandisk_clean 1.2x further off)
   bool median_shift = true;   // f <- f - median f(p) after signing, as ACTD07 picks the
                               // isovalue at the median of f over the samples
 };
+
+// The spectral solver's alpha for samples of noise sigma whose largest
+// bounding-box side is l:
+//   alpha = min(K (l / sigma)^3, kSpectralMaxValueWeight).
+// Measured on the bunny (0, 0.5 and 1 % noise): the best alpha is about 100 x
+// ssd_value_weight^1.5 (3e6 at 0.5 %, 1e6 at 1 %, 1e9 clean); the data term
+// sits in the eigenproblem's constraint, where it competes with a
+// fourth-order term, not in a least-squares fit.
+double spectral_value_weight(double noise, double length);
+inline constexpr double kSpectralValueWeightNoiseScale = 0.65;
+inline constexpr double kSpectralMaxValueWeight = 1e9;  // 1e10 is no closer, and slower
 
 struct SolverOptions {
   SolverKind kind = SolverKind::kSsd;  // the paper's experiments use SSD (§4)
@@ -169,9 +185,9 @@ struct SolverOptions {
 
 // What the last solve did.
 struct SolverStats {
-  std::string method;            // "cholmod" or "cg+multigrid"; spectral: "lanczos+" one of them
-  int iterations = 0;            // CG iterations (0 for CHOLMOD); spectral: Lanczos steps, i.e.
-                                 // products with B^-1 A
+  std::string method;            // "cholmod" or "cg+multigrid"; spectral: "lobpcg+" one of them
+  int iterations = 0;            // CG iterations (0 for CHOLMOD); spectral: LOBPCG iterations,
+                                 // each with one V-cycle (or exact solve) with B
   int levels = 0;                // multigrid levels, the system's included (1: direct)
   double residual = 0;           // |A x - b| / |b| of the final solve (spectral: of the eigenpair,
                                  // |A x - lambda B x| / (lambda |B x|))
@@ -179,15 +195,15 @@ struct SolverStats {
                                  // noise estimate when SsdOptions::noise asks for one)
   double factorize_seconds = 0;  // CHOLMOD's factorization, or the multigrid's set-up (coarse
                                  // levels, Galerkin operators, smoother bounds)
-  double solve_seconds = 0;      // triangular solves / CG / Lanczos, and the median shift
+  double solve_seconds = 0;      // triangular solves / CG / LOBPCG, and the median shift
   std::size_t num_vertices = 0;
   std::size_t num_points = 0;
   std::size_t nonzeros = 0;      // in the system matrix (lower and upper)
   double median_shift = 0;       // the constant subtracted from f (0 when not shifted)
   double eigenvalue = 0;         // spectral: lambda
   double kernel_size = 0;        // Poisson: the kernel standard deviation used, in input units
-  double value_weight = 0;       // SSD and screened Poisson: the alpha solved with
-                                 // (ssd_value_weight when automatic)
+  double value_weight = 0;       // SSD, screened Poisson and spectral: the alpha solved with
+                                 // (ssd_value_weight or spectral_value_weight when automatic)
 };
 
 class ImplicitSolver {
@@ -195,8 +211,7 @@ class ImplicitSolver {
   virtual ~ImplicitSolver();
   // f at the vertices of `domain` (f < 0 inside). warm_start, if given, is a
   // guess of f at the same vertices (e.g. the previous iterate interpolated
-  // onto the new domain); CG starts from it (the spectral solver checks its
-  // size but does not use it, see spectral.cpp). A solver called on a
+  // onto the new domain); CG and the spectral solver's LOBPCG start from it. A solver called on a
   // sequence of domains, each refined from the last (vertex i of one is
   // vertex i of the next, as Domain::insert and the optimizer keep them),
   // uses the earlier ones as the coarse levels of its multigrid. Throws InputError

@@ -515,8 +515,8 @@ Result run_stages(const PointSet& points, const ReconstructOptions& options, Pro
   relative.normals = input.normals;
   for (Vec3& p : relative.points) p -= centre;
   ReconstructOptions resolved = relative_to(options, centre);
-  // The input's noise for the automatic value weight of SSD or of the screened
-  // Poisson solver, once for all the solves.
+  // The input's noise for the automatic value weight of SSD, the screened
+  // Poisson solver or the spectral solver, once for all the solves.
   SsdOptions& ssd = resolved.solver.ssd;
   PoissonOptions& poisson = resolved.solver.poisson;
   const SolverKind kind = resolved.solver.kind;
@@ -524,9 +524,12 @@ Result run_stages(const PointSet& points, const ReconstructOptions& options, Pro
     ssd.noise = estimate_noise(relative);
   if (kind == SolverKind::kPoisson && poisson.screened && poisson.alpha == 0 && poisson.noise < 0)
     poisson.noise = estimate_noise(relative);
+  SpectralOptions& spectral = resolved.solver.spectral;
+  if (kind == SolverKind::kSpectral && spectral.alpha == 0 && spectral.noise < 0)
+    spectral.noise = estimate_noise(relative);
   const double noise = kind == SolverKind::kSsd       ? ssd.noise
                        : kind == SolverKind::kPoisson ? poisson.noise
-                                                      : -1.0;
+                                                      : spectral.noise;
   std::vector<Vec3> trim_samples;  // the input's points, outliers included (Run::trim_samples_)
   if (options.trim.distance > 0) {
     trim_samples = points.points;

@@ -145,6 +145,13 @@ void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   if (d.direct && residual_ > d.options.max_residual) fail("CHOLMOD solve is inaccurate", residual_);
 }
 
+void LinearSolver::precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
+  if (impl_->direct)
+    z = impl_->cholmod.solve(r);
+  else
+    impl_->multigrid.precondition(r, z);
+}
+
 void LinearSolver::release() {
   impl_->multigrid.clear();
   impl_->A = nullptr;

@@ -37,6 +37,10 @@ class LinearSolver {
   // exceeds options.max_residual or the result is not finite.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
 
+  // z = an approximation of A^-1 r: one multigrid V-cycle, or CHOLMOD's exact
+  // solve. Symmetric positive definite in r (a preconditioner).
+  void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
+
   const std::string& method_name() const { return method_; }  // "cholmod" or "cg+multigrid"
   int iterations() const { return iterations_; }  // of the last solve (0 for CHOLMOD)
   double residual() const { return residual_; }   // |A x - b| / |b| of the last solve

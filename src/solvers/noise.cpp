@@ -1,4 +1,4 @@
-// The input's noise level and the SSD value weight chosen from it.
+// The input's noise level and the value weights of SSD and the spectral solver chosen from it.
 #include <pdd/errors.h>
 #include <pdd/solvers.h>
 
@@ -65,6 +65,12 @@ double estimate_noise(const PointSet& points, int neighbors) {
 double ssd_value_weight(double noise, double length) {
   const double sigma = noise / length;
   return std::min(kSsdValueWeightNoiseScale / (sigma * sigma), kSsdMaxValueWeight);
+}
+
+double spectral_value_weight(double noise, double length) {
+  const double sigma = noise / length;
+  return std::min(kSpectralValueWeightNoiseScale / (sigma * sigma * sigma),
+                  kSpectralMaxValueWeight);
 }
 
 }  // namespace pdd

@@ -1,54 +1,69 @@
 // Spectral reconstruction [ACTD07] on the domain, Eqs. (16)-(17): the
-// generalized eigenvector of the largest eigenvalue, by Spectra's Lanczos
-// iteration on B^-1 A with B factorized once.
+// generalized eigenvector of the largest eigenvalue, by LOBPCG preconditioned
+// with the multigrid of B (lobpcg.h), started from the previous domain's f.
 #include "solvers/kinds.h"
 #include "solvers/linear_solver.h"
+#include "solvers/lobpcg.h"
 #include "solvers/problem.h"
 
 #include <pdd/errors.h>
-
-#include <Spectra/MatOp/SparseSymMatProd.h>
-#include <Spectra/SymGEigsSolver.h>
 
 #include <sstream>
 
 namespace pdd::detail {
 namespace {
 
-// Spectra's "B operation" for GEigsMode::RegularInverse: products with B and
-// solves with B, the latter through our LinearSolver.
-class ConstraintOperator {
- public:
-  using Scalar = double;
-  ConstraintOperator(const SparseMatrix& B, LinearSolver& solver) : B_(B), solver_(solver) {}
-  Eigen::Index rows() const { return B_.rows(); }
-  void solve(const double* x_in, double* y_out) const {
-    const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(x_in, B_.rows());
-    Eigen::VectorXd y(B_.rows());
-    y.setZero();
-    solver_.solve(x, y);
-    Eigen::Map<Eigen::VectorXd>(y_out, B_.rows()) = y;
-  }
-  void perform_op(const double* x_in, double* y_out) const {
-    Eigen::Map<Eigen::VectorXd>(y_out, B_.rows()) =
-        B_ * Eigen::Map<const Eigen::VectorXd>(x_in, B_.rows());
-  }
+// sum (f_i - f_j)^2 over the edges of the domain's outer boundary (the
+// faces of tets without a neighbour), each edge once per face it bounds.
+SparseMatrix outer_boundary_laplacian(const Domain& domain) {
+  const auto& tets = domain.tets();
+  const auto& neighbors = domain.tet_neighbors();
+  std::vector<Eigen::Triplet<double>> entries;
+  for (std::size_t t = 0; t < tets.size(); ++t)
+    for (int i = 0; i < 4; ++i) {
+      if (neighbors[t][i] >= 0) continue;
+      for (int a = 0; a < 4; ++a)
+        for (int b = a + 1; b < 4; ++b) {
+          if (a == i || b == i) continue;
+          const int u = tets[t][a], v = tets[t][b];
+          entries.emplace_back(u, u, 1.0);
+          entries.emplace_back(v, v, 1.0);
+          entries.emplace_back(u, v, -1.0);
+          entries.emplace_back(v, u, -1.0);
+        }
+    }
+  const Eigen::Index n = static_cast<Eigen::Index>(domain.num_vertices());
+  SparseMatrix T(n, n);
+  T.setFromTriplets(entries.begin(), entries.end());
+  return T;
+}
 
- private:
-  const SparseMatrix& B_;
-  LinearSolver& solver_;
-};
+// The tie's weight: outer_tie times the mean diagonal of B over the outer
+// boundary's vertices, so that it is as strong as the rest of the
+// constraint there whatever the input's scale and alpha.
+double outer_tie_weight(const SparseMatrix& B, const SparseMatrix& T, double outer_tie) {
+  double sum = 0;
+  int count = 0;
+  for (Eigen::Index v = 0; v < T.outerSize(); ++v)
+    if (T.col(v).nonZeros() > 0) {
+      sum += B.coeff(v, v);
+      ++count;
+    }
+  return count > 0 ? outer_tie * sum / count : 0.0;
+}
 
 class SpectralSolver final : public ImplicitSolver {
  public:
   SpectralSolver(const SpectralOptions& options, const LinearSolverOptions& linear)
       : options_(options),
         linear_(linear) {
-    if (!(options.alpha > 0) || !(options.beta >= 0) || !(options.gamma >= 0) ||
-        !(options.mu >= 0))
-      throw InputError("spectral solver: alpha must be > 0 and beta, gamma, mu >= 0");
-    if (options.krylov_size < 3 || options.max_restarts < 1 || !(options.tolerance > 0))
-      throw InputError("spectral solver: krylov size must be >= 3, restarts >= 1, tolerance > 0");
+    if (!(options.alpha >= 0) || !(options.beta >= 0) || !(options.gamma >= 0) ||
+        !(options.mu >= 0) || !(options.outer_tie >= 0))
+      throw InputError(
+          "spectral solver: alpha must be >= 0 (0: from the noise) and beta, gamma, mu and the "
+          "outer tie >= 0");
+    if (options.max_iterations < 1 || !(options.tolerance > 0))
+      throw InputError("spectral solver: iterations must be >= 1 and the tolerance > 0");
   }
 
   std::vector<double> solve(const Domain& domain, const PointSet& points,
@@ -83,8 +98,13 @@ class SpectralSolver final : public ImplicitSolver {
     const SparseMatrix A = weighted_stiffness(p.mesh, tensor);
 
     // Right side of Eq. (17), in units of l: alpha/|X| Phi^T Phi + beta L / l
-    // + gamma l L M_V^-1 L (B = L M_V^-1 L is the bi-Laplacian).
-    SparseMatrix B = (options_.alpha / nx) * gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
+    // + gamma l L M_V^-1 L (B = L M_V^-1 L is the bi-Laplacian), and the tie.
+    const double alpha =
+        options_.alpha > 0
+            ? options_.alpha
+            : spectral_value_weight(options_.noise >= 0 ? options_.noise : estimate_noise(points),
+                                    p.length);
+    SparseMatrix B = (alpha / nx) * gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
     if (options_.beta > 0 || options_.gamma > 0) {
       const SparseMatrix L = cotangent_laplacian(p.mesh);
       if (options_.beta > 0) B += (options_.beta / p.length) * L;
@@ -93,35 +113,27 @@ class SpectralSolver final : public ImplicitSolver {
         B += (options_.gamma * p.length) * gram_matrix(L, vertex_masses(p.mesh).cwiseInverse());
       }
     }
+    if (options_.outer_tie > 0) {
+      const SparseMatrix T = outer_boundary_laplacian(domain);
+      B += outer_tie_weight(B, T, options_.outer_tie) * T;
+    }
     stats_.assembly_seconds = seconds_since(start);
 
     linear_.compute(B, p.mesh.vertices);
     const auto solve_start = Clock::now();
-    Spectra::SparseSymMatProd<double> a_op(A);
-    ConstraintOperator b_op(B, linear_);
-    const Eigen::Index n = B.rows();
-    const Eigen::Index ncv = std::min<Eigen::Index>(options_.krylov_size, n);
-    Spectra::SymGEigsSolver<Spectra::SparseSymMatProd<double>, ConstraintOperator,
-                            Spectra::GEigsMode::RegularInverse>
-        eigs(a_op, b_op, 1, ncv);
-    // The warm start is checked but not used: from Spectra's own (fixed-seed,
-    // deterministic) start vector Lanczos converges in one restart, while
-    // starting from the previous eigenvector took 22 restarts and 20x longer
-    // (measured, bench/solvers_bench.cpp, 10k vertices).
-    warm_start_vector(warm_start, p.mesh.vertices.size());
-    eigs.init();
-    eigs.compute(Spectra::SortRule::LargestAlge, options_.max_restarts, options_.tolerance);
-    stats_.iterations = static_cast<int>(eigs.num_operations());
-    if (eigs.info() != Spectra::CompInfo::Successful) {
+    Eigen::VectorXd f = warm_start_vector(warm_start, p.mesh.vertices.size());
+    const LobpcgResult eig = largest_eigenpair(
+        A, B, [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { linear_.precondition(r, z); }, f,
+        options_.tolerance, options_.max_iterations);
+    stats_.iterations = eig.iterations;
+    stats_.residual = eig.residual;
+    const double lambda = eig.eigenvalue;
+    if (!eig.converged) {
       std::ostringstream msg;
-      msg << "spectral solver: Lanczos did not converge in " << eigs.num_iterations()
-          << " restarts (" << stats_.iterations << " solves with B)";
+      msg << "spectral solver: LOBPCG did not converge in " << eig.iterations
+          << " iterations (relative residual " << eig.residual << ")";
       throw SolverError(msg.str());
     }
-    const double lambda = eigs.eigenvalues()[0];
-    Eigen::VectorXd f = eigs.eigenvectors().col(0);
-    const Eigen::VectorXd Bf = B * f;
-    stats_.residual = (A * f - lambda * Bf).norm() / (std::abs(lambda) * Bf.norm());
     if (!f.allFinite() || !(lambda > 0)) {
       std::ostringstream msg;
       msg << "spectral solver: no positive eigenvalue (lambda = " << lambda
@@ -141,7 +153,7 @@ class SpectralSolver final : public ImplicitSolver {
     }
     stats_.solve_seconds = seconds_since(solve_start);
 
-    stats_.method = std::string("lanczos+") + linear_.method_name();
+    stats_.method = std::string("lobpcg+") + linear_.method_name();
     stats_.eigenvalue = lambda;
     stats_.factorize_seconds = linear_.setup_seconds();
     stats_.levels = linear_.levels();
@@ -149,6 +161,7 @@ class SpectralSolver final : public ImplicitSolver {
     stats_.num_vertices = p.mesh.vertices.size();
     stats_.num_points = p.num_points;
     stats_.nonzeros = static_cast<std::size_t>(B.nonZeros());
+    stats_.value_weight = alpha;
     return to_std(f);
   }
 
