@@ -1,11 +1,12 @@
 #include "solvers/lobpcg.h"
 
-#include <Eigen/Eigenvalues>
-#include <cmath>
-#include <random>
-
 #include "common/cancellation.h"
 #include "common/parallel_kernels.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <cmath>
+#include <random>
 
 namespace pdd::detail {
 namespace {
