@@ -118,4 +118,9 @@ inline bool add_into(Eigen::SparseMatrix<double>& X, const Eigen::SparseMatrix<d
   return true;
 }
 
+// X += w Y: in place when add_into can, as a new sum otherwise.
+inline void add_to(Eigen::SparseMatrix<double>& X, const Eigen::SparseMatrix<double>& Y, double w) {
+  if (!add_into(X, Y, w)) X += w * Y;
+}
+
 }  // namespace pdd::detail

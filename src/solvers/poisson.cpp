@@ -59,7 +59,7 @@ class PoissonSolver final : public ImplicitSolver {
       stats_.value_weight = alpha;
       const double w = alpha * p.length / static_cast<double>(p.num_points);
       const SparseMatrix values = gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
-      if (!add_into(A, values, w)) A += w * values;
+      add_to(A, values, w);
     } else {
       // The original Poisson equation: f is defined up to a constant, fixed
       // by the penalty L_00 f_0^2, which does not change the minimizers of

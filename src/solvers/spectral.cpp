@@ -6,6 +6,8 @@
 #include "solvers/lobpcg.h"
 #include "solvers/problem.h"
 
+#include "common/parallel_kernels.h"
+
 #include <pdd/errors.h>
 
 #include <sstream>
@@ -104,18 +106,26 @@ class SpectralSolver final : public ImplicitSolver {
             ? options_.alpha
             : spectral_value_weight(options_.noise >= 0 ? options_.noise : estimate_noise(points),
                                     p.length);
-    SparseMatrix B = (alpha / nx) * gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
+    // The one-ring terms are added into the two-ring bi-Laplacian in place.
+    SparseMatrix B;
+    const SparseMatrix values = gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
     if (options_.beta > 0 || options_.gamma > 0) {
       const SparseMatrix L = cotangent_laplacian(p.mesh);
-      if (options_.beta > 0) B += (options_.beta / p.length) * L;
       if (options_.gamma > 0) {
         // L is symmetric, so L M_V^-1 L = L^T M_V^-1 L.
-        B += (options_.gamma * p.length) * gram_matrix(L, vertex_masses(p.mesh).cwiseInverse());
+        gram_matrix(L, vertex_masses(p.mesh).cwiseInverse()).swap(B);
+        B *= options_.gamma * p.length;
+        if (options_.beta > 0) add_to(B, L, options_.beta / p.length);
+      } else {
+        B = (options_.beta / p.length) * L;
       }
+      add_to(B, values, alpha / nx);
+    } else {
+      B = (alpha / nx) * values;
     }
     if (options_.outer_tie > 0) {
       const SparseMatrix T = outer_boundary_laplacian(domain);
-      B += outer_tie_weight(B, T, options_.outer_tie) * T;
+      add_to(B, T, outer_tie_weight(B, T, options_.outer_tie));
     }
     stats_.assembly_seconds = seconds_since(start);
 

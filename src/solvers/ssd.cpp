@@ -21,12 +21,6 @@ SsdOptions resolved(SsdOptions options, const Problem& p, const PointSet& points
   return options;
 }
 
-// Y added into X (X += w Y) in place when X has room for Y's entries, as
-// the two-ring Hessian term has for the one-ring ones; a new sum otherwise.
-void add_to(SparseMatrix& X, const SparseMatrix& Y, double w) {
-  if (!add_into(X, Y, w)) X += w * Y;
-}
-
 // The system A f = b of Eq. (15) for a located problem.
 LinearSystem ssd_system(const Problem& p, const SsdOptions& options) {
   const double nx = static_cast<double>(p.num_points);
