@@ -149,6 +149,13 @@ const PointSet& prepare_normals(const PointSet& points, const ReconstructOptions
   report.neighbors = noise_scaled_neighbors(estimate_noise(points), average_spacing(points),
                                             options.normal_neighbors);
   report.smoothed = report.neighbors > options.normal_neighbors;
+  // The spectral solver ignores the normals' signs (Eq. 16): estimated normals
+  // are not oriented for it unless re-orienting was asked for.
+  if (options.solver.kind == SolverKind::kSpectral && options.normals != NormalsMode::kOrient) {
+    storage.normals = estimate_normals(points.points, report.neighbors, options.source);
+    report.estimated = true;
+    return finish();
+  }
   PointSet guide;  // the geometry the orientation runs on
   guide.points = report.smoothed ? smooth_points(points.points, report.neighbors) : points.points;
   guide.normals = estimate || report.smoothed
