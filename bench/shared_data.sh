@@ -5,13 +5,15 @@
 # columns of /work/shared/data/README.md so that the rows compare with the peers
 # listed there.
 #
-#   bench/shared_data.sh [PDD] [--domain STRATEGY] [--linear METHOD] [--seed S] [--only REGEX] [--data DIR] [--keep DIR]
+#   bench/shared_data.sh [PDD] [--domain STRATEGY] [--linear METHOD] [--solver S] [--seed S] [--only REGEX] [--data DIR] [--keep DIR]
 #
 #   PDD              the pdd binary (default: build/pdd)
 #   --domain S       passed to `pdd reconstruct --domain S` (e.g. octree for the
 #                    baseline); the table then goes to shared_data_S.md
 #   --linear M       passed to `pdd reconstruct --linear M` (e.g. cholmod); the table
 #                    then goes to shared_data_linear_M.md
+#   --solver S       passed to `pdd reconstruct --solver S` (poisson, spectral); the
+#                    table then goes to shared_data_solver_S.md
 #   --seed S         passed to `pdd reconstruct --seed S`; the table then goes
 #                    to shared_data_seed_S.md (default: pdd's default seed)
 #   --only REGEX     only the inputs whose name (e.g. bunny_clean) matches
@@ -28,6 +30,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 pdd="$root/build/pdd"
 domain=""
+solver=""
 linear=""
 seed=""
 only=""
@@ -39,6 +42,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --domain) [ $# -ge 2 ] || usage; domain="$2"; shift 2 ;;
     --linear) [ $# -ge 2 ] || usage; linear="$2"; shift 2 ;;
+    --solver) [ $# -ge 2 ] || usage; solver="$2"; shift 2 ;;
     --seed) [ $# -ge 2 ] || usage; seed="$2"; shift 2 ;;
     --only) [ $# -ge 2 ] || usage; only="$2"; shift 2 ;;
     --data) [ $# -ge 2 ] || usage; data="$2"; shift 2 ;;
@@ -55,7 +59,7 @@ done
 [ -x "$pdd" ] || { echo "shared_data.sh: $pdd is not an executable (build it, or pass its path)" >&2; exit 2; }
 pdd="$(cd "$(dirname "$pdd")" && pwd)/$(basename "$pdd")"
 
-name="shared_data${domain:+_$domain}${linear:+_linear_$linear}${seed:+_seed_$seed}"
+name="shared_data${domain:+_$domain}${linear:+_linear_$linear}${solver:+_solver_$solver}${seed:+_seed_$seed}"
 results="$root/bench/results"
 details="$results/$name"
 table="$results/$name.md"
@@ -118,6 +122,7 @@ for input in "${inputs[@]}"; do
   args=(reconstruct "$input" -o "$mesh")
   [ $stats_flag = 1 ] && args+=(--stats "$details/$base.stats.json")
   [ -n "$domain" ] && args+=(--domain "$domain")
+  [ -n "$solver" ] && args+=(--solver "$solver")
   [ -n "$linear" ] && args+=(--linear "$linear")
   [ -n "$seed" ] && args+=(--seed "$seed")
   code=0
@@ -189,7 +194,7 @@ for input in "${inputs[@]}"; do
 done
 
 {
-  echo "# pdd on the shared data: domain ${domain:-progressive}, linear solves ${linear:-multigrid}, seed ${seed:-default} (other options default)"
+  echo "# pdd on the shared data: domain ${domain:-progressive}, solver ${solver:-ssd}, linear solves ${linear:-multigrid}, seed ${seed:-default} (other options default)"
   echo
   echo "$(date -u '+%Y-%m-%d %H:%M UTC'); $("$pdd" --version 2>/dev/null || echo "pdd ?"), commit" \
     "$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo ?)$(git -C "$root" diff --quiet 2>/dev/null || echo "+local changes");" \

@@ -9,7 +9,8 @@ bare points. Per run: topology (closed, manifold, components, genus against the 
 Chamfer-L1 against the ground truth (pdd compare, 100k samples), mean min angle, wall time
 and peak memory; and the ratios against the true-normals run.
 
-    bash scripts/build.sh && /usr/bin/python3 bench/unoriented.py [--only REGEX] [--designs spectral,visibility,mst]
+    bash scripts/build.sh && /usr/bin/python3 bench/unoriented.py [--only REGEX]
+        [--designs spectral,visibility,mst,spectral-solver]
         [--pdd BIN] [--output FILE]
 
 Writes bench/results/unoriented.md (also printed).
@@ -68,6 +69,14 @@ def open3d_poisson(xyz, out):
     return timed(["/usr/bin/python3", "-c", script, xyz, out])
 
 
+def design_args(design, given):
+    """pdd's options for a design: an orientation, or "spectral-solver" (the spectral solver,
+    which ignores the normals' signs: bare points get estimated normals, given ones are kept)."""
+    if design == "spectral-solver":
+        return ["--solver", "spectral"]
+    return (["--normals", "orient"] if given else []) + ["--orientation", design]
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--only", default="")
@@ -92,10 +101,9 @@ def main():
                        fmt="%.17g")
             runs = [("true normals", [ply], [])]
             for d in designs:
-                runs.append((f"no normals, {d}", [bare], ["--orientation", d]))
+                runs.append((f"no normals, {d}", [bare], design_args(d, False)))
             for d in designs:
-                runs.append((f"half flipped, {d}", [flipped],
-                             ["--normals", "orient", "--orientation", d]))
+                runs.append((f"half flipped, {d}", [flipped], design_args(d, True)))
             reference = None
             for label, (source,), extra in runs:
                 out = tmp / "out.ply"
