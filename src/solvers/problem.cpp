@@ -50,13 +50,7 @@ std::vector<int> outer_vertices(const Domain& domain) {
     if (domain.on_boundary_sphere(v)) out.push_back(v);
   if (!out.empty()) return out;
   std::vector<char> hull(domain.num_vertices(), 0);
-  const auto& tets = domain.tets();
-  const auto& neighbors = domain.tet_neighbors();
-  for (std::size_t t = 0; t < tets.size(); ++t)
-    for (int i = 0; i < 4; ++i)
-      if (neighbors[t][i] < 0)
-        for (int k = 0; k < 4; ++k)
-          if (k != i) hull[tets[t][k]] = 1;
+  for_each_hull_face(domain, [&](int a, int b, int c) { hull[a] = hull[b] = hull[c] = 1; });
   for (int v = 0; v < static_cast<int>(hull.size()); ++v)
     if (hull[v]) out.push_back(v);
   return out;

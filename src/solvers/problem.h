@@ -36,6 +36,18 @@ Problem make_problem(const Domain& domain, const PointSet& points, const std::st
 // The median of the values of f at the samples (Phi f).
 double median_at_samples(const SparseMatrix& Phi, const Eigen::VectorXd& f);
 
+// visit(a, b, c) for the three vertices of each face of the domain's convex
+// hull (a face of a tet without a neighbour across it).
+template <class Visit>
+void for_each_hull_face(const Domain& domain, Visit visit) {
+  const auto& tets = domain.tets();
+  const auto& neighbors = domain.tet_neighbors();
+  for (std::size_t t = 0; t < tets.size(); ++t)
+    for (int i = 0; i < 4; ++i)
+      if (neighbors[t][i] < 0)
+        visit(tets[t][(i + 1) % 4], tets[t][(i + 2) % 4], tets[t][(i + 3) % 4]);
+}
+
 // Vertices where f must be positive (outside): those flagged on the domain's
 // bounding sphere, or, when none is flagged, those on the convex hull.
 std::vector<int> outer_vertices(const Domain& domain);

@@ -18,22 +18,18 @@ namespace {
 // sum (f_i - f_j)^2 over the edges of the domain's outer boundary (the
 // faces of tets without a neighbour), each edge once per face it bounds.
 SparseMatrix outer_boundary_laplacian(const Domain& domain) {
-  const auto& tets = domain.tets();
-  const auto& neighbors = domain.tet_neighbors();
   std::vector<Eigen::Triplet<double>> entries;
-  for (std::size_t t = 0; t < tets.size(); ++t)
-    for (int i = 0; i < 4; ++i) {
-      if (neighbors[t][i] >= 0) continue;
-      for (int a = 0; a < 4; ++a)
-        for (int b = a + 1; b < 4; ++b) {
-          if (a == i || b == i) continue;
-          const int u = tets[t][a], v = tets[t][b];
-          entries.emplace_back(u, u, 1.0);
-          entries.emplace_back(v, v, 1.0);
-          entries.emplace_back(u, v, -1.0);
-          entries.emplace_back(v, u, -1.0);
-        }
-    }
+  const auto edge = [&](int u, int v) {
+    entries.emplace_back(u, u, 1.0);
+    entries.emplace_back(v, v, 1.0);
+    entries.emplace_back(u, v, -1.0);
+    entries.emplace_back(v, u, -1.0);
+  };
+  for_each_hull_face(domain, [&](int a, int b, int c) {
+    edge(a, b);
+    edge(b, c);
+    edge(c, a);
+  });
   const Eigen::Index n = static_cast<Eigen::Index>(domain.num_vertices());
   SparseMatrix T(n, n);
   T.setFromTriplets(entries.begin(), entries.end());
