@@ -46,6 +46,23 @@ TEST(Normals, JetFittingOnASphereIsWithinADegreeOfTheTruth) {
   EXPECT_LT(worst, 1.0);
 }
 
+// One fit gives both: the points projected onto their jets lie nearer the
+// sphere than the noisy input, and their normals are near the radial ones.
+TEST(Normals, OneJetFitSmoothsThePointsAndGivesTheirNormals) {
+  PointSet sphere = test::sample_sphere(3000);
+  test::add_noise(sphere, 0.01, 3);
+  const JetFits fits = fit_jets(sphere.points, 60, "sphere");
+  ASSERT_EQ(fits.points.size(), sphere.size());
+  ASSERT_EQ(fits.normals.size(), sphere.size());
+  double before = 0, after = 0;
+  for (std::size_t i = 0; i < sphere.size(); ++i) {
+    before += std::pow(sphere.points[i].norm() - 1, 2);
+    after += std::pow(fits.points[i].norm() - 1, 2);
+    EXPECT_LT(degrees_between_lines(fits.normals[i], fits.points[i]), 5.0) << i;
+  }
+  EXPECT_LT(after, 0.25 * before);  // RMS off the sphere at most half the noise's
+}
+
 TEST(Normals, MstOrientsEveryNormalOfASphereOneWay) {
   const PointSet sphere = test::sample_sphere(2000);
   std::vector<Vec3> normals = sphere.normals;

@@ -18,10 +18,19 @@ namespace pdd {
 // neighbours, and the neighbourhoods must not all be the whole set.
 constexpr std::size_t kMinPointsForNormals = 16;
 
-// Unit normals of unknown sign by fitting a quadratic jet (osculating
-// quadric) to each point's k nearest neighbours (CGAL::jet_estimate_normals);
-// k adapts the neighbourhood's radius to the local density. Throws
-// InputError naming `source` when there are fewer than kMinPointsForNormals points.
+// One quadratic jet (osculating quadric, CGAL::Monge_via_jet_fitting) fitted
+// to each point and its k nearest neighbours: the point projected
+// onto it (noise removed at that scale) and its unit normal, of unknown sign.
+// k adapts the neighbourhood's radius to the local density. Throws InputError
+// naming `source` when there are fewer than kMinPointsForNormals points or a
+// neighbourhood is too degenerate for a plane.
+struct JetFits {
+  std::vector<Vec3> points;
+  std::vector<Vec3> normals;
+};
+JetFits fit_jets(const std::vector<Vec3>& points, int neighbors, const std::string& source);
+
+// The normals of fit_jets alone.
 std::vector<Vec3> estimate_normals(const std::vector<Vec3>& points, int neighbors,
                                    const std::string& source);
 
@@ -31,10 +40,6 @@ std::vector<Vec3> estimate_normals(const std::vector<Vec3>& points, int neighbor
 // several times the noise.
 constexpr int kMaxNoiseNeighbors = 100;
 int noise_scaled_neighbors(double noise, double spacing, int neighbors);
-
-// The points projected onto the quadratic jets fitted to their k nearest
-// neighbours (CGAL::jet_smooth_point_set): noise removed at that scale.
-std::vector<Vec3> smooth_points(const std::vector<Vec3>& points, int neighbors);
 
 // Orients `normals` consistently (flipping some) by propagating the
 // orientation of the highest point (made to face +z) along a minimum spanning

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <utility>
 
 namespace pdd::detail {
 namespace {
@@ -157,7 +158,14 @@ const PointSet& prepare_normals(const PointSet& points, const ReconstructOptions
     return finish();
   }
   PointSet guide;  // the geometry the orientation runs on
-  guide.points = report.smoothed ? smooth_points(points.points, report.neighbors) : points.points;
+  std::vector<Vec3> raw_jets;  // the normals of the jets that smoothed the points
+  if (report.smoothed) {
+    JetFits fits = fit_jets(points.points, report.neighbors, options.source);
+    guide.points = std::move(fits.points);
+    raw_jets = std::move(fits.normals);
+  } else {
+    guide.points = points.points;
+  }
   guide.normals = estimate || report.smoothed
                       ? estimate_normals(guide.points, report.neighbors, options.source)
                       : storage.normals;
@@ -179,10 +187,7 @@ const PointSet& prepare_normals(const PointSet& points, const ReconstructOptions
   // The normals handed on are fitted to the points themselves (the guide's,
   // fitted again on smoothed points, are smoother still) or given; they take
   // the sign of the oriented guide.
-  if (estimate)
-    storage.normals = report.smoothed
-                          ? estimate_normals(points.points, report.neighbors, options.source)
-                          : guide.normals;
+  if (estimate) storage.normals = report.smoothed ? std::move(raw_jets) : guide.normals;
   for (std::size_t i = 0; i < storage.size(); ++i) {
     if (storage.normals[i].dot(guide.normals[i]) < 0) storage.normals[i] = -storage.normals[i];
     report.flipped += (estimate ? guide.normals[i] : storage.normals[i]).dot(before[i]) < 0;
