@@ -144,9 +144,9 @@ const PointSet& prepare_normals(const PointSet& points, const ReconstructOptions
   if (!estimate && options.normals == NormalsMode::kKeep) return finish();
 
   // On noisy points (noise near the spacing), normals fitted over k points and
-  // steps between raw neighbours are mostly noise: the orientation (and the
-  // estimation) then run on the points projected onto jets fitted at a scale
-  // that follows the noise, with those jets' normals.
+  // steps between raw neighbours are mostly noise: the estimation then fits
+  // jets at a scale that follows the noise, and the orientation runs on the
+  // points projected onto them.
   report.neighbors = noise_scaled_neighbors(estimate_noise(points), average_spacing(points),
                                             options.normal_neighbors);
   report.smoothed = report.neighbors > options.normal_neighbors;
@@ -166,8 +166,11 @@ const PointSet& prepare_normals(const PointSet& points, const ReconstructOptions
   } else {
     guide.points = points.points;
   }
+  // The guide's own jets span the plain neighbourhood: its points are already
+  // smoothed at the noise's scale, and a fit at that scale again would span
+  // both sides of parts about as thin as the noise (the bunny's ears).
   guide.normals = estimate || report.smoothed
-                      ? estimate_normals(guide.points, report.neighbors, options.source)
+                      ? estimate_normals(guide.points, options.normal_neighbors, options.source)
                       : storage.normals;
   const std::vector<Vec3> before = estimate ? guide.normals : storage.normals;
   report.estimated = estimate;
