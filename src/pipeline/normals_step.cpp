@@ -187,9 +187,10 @@ const PointSet& prepare_normals(const PointSet& points, const ReconstructOptions
       orient_by_visibility_vote(guide, options, report);
       break;
   }
-  // The normals handed on are fitted to the points themselves (the guide's,
-  // fitted again on smoothed points, are smoother still) or given; they take
-  // the sign of the oriented guide.
+  // The normals handed on are the noise-scale jets' on noisy points (the
+  // guide's, fitted over fewer smoothed points, follow the noise's scale less:
+  // docs/benchmarks.md, "Normals"), the guide's otherwise, or the given ones;
+  // they take the sign of the oriented guide.
   if (estimate) storage.normals = report.smoothed ? std::move(raw_jets) : guide.normals;
   for (std::size_t i = 0; i < storage.size(); ++i) {
     if (storage.normals[i].dot(guide.normals[i]) < 0) storage.normals[i] = -storage.normals[i];
