@@ -114,6 +114,10 @@ TEST_F(FemTest, CotangentLaplacianEqualsGTransposeMG) {
   std::vector<Eigen::Matrix3d> w(mesh.tets.size());
   for (std::size_t t = 0; t < w.size(); ++t) w[t] = vol[t] * Eigen::Matrix3d::Identity();
   EXPECT_LT(SparseMatrix(weighted_stiffness(mesh, w) - L).norm(), 1e-10 * L.norm());
+  // And with the scalar weights W_t = vol_t.
+  const std::vector<double> scalar(vol.data(), vol.data() + vol.size());
+  EXPECT_LT(SparseMatrix(weighted_stiffness(mesh, scalar) - L).norm(), 1e-10 * L.norm());
+  EXPECT_THROW(weighted_stiffness(mesh, std::vector<double>(3, 1.0)), std::invalid_argument);
 }
 
 TEST_F(FemTest, LaplacianOfALinearFunctionVanishesInside) {

@@ -60,6 +60,8 @@ SparseMatrix cotangent_laplacian(const TetMesh& mesh);
 // gradient terms at the samples (Eqs. (15) and (17), G^T S^T C S G).
 // weights.size() must equal the number of tets.
 SparseMatrix weighted_stiffness(const TetMesh& mesh, const std::vector<Eigen::Matrix3d>& weights);
+// The same for W_t = weights[t] * I.
+SparseMatrix weighted_stiffness(const TetMesh& mesh, const std::vector<double>& weights);
 
 // The integrated Hessian of Eq. (11) after Stein et al.: H = D~^T M~_T G~
 // (9|V| x |V|), where G~ = [G_x; G_y; G_z] stacks the gradient components,

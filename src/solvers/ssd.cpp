@@ -25,41 +25,45 @@ SsdOptions resolved(SsdOptions options, const Problem& p, const PointSet& points
 LinearSystem ssd_system(const Problem& p, const SsdOptions& options) {
   const double nx = static_cast<double>(p.num_points);
   const std::size_t nt = p.mesh.tets.size();
-
-  // S^T S counts the samples in each tet and S^T N sums their normals, so
-  // G^T S^T S G = G^T diag(count_t I) G and G^T S^T N = G^T (sum of n_p per tet):
-  // b_v = beta / |X| sum over the tets t of v of grad(phi_v)|_t . (sum of n_p in t).
-  std::vector<Eigen::Matrix3d> count(nt, Eigen::Matrix3d::Zero());
-  std::vector<Vec3> normal_sum(nt, Vec3::Zero());
-  for (std::size_t i = 0; i < p.num_points; ++i) {
-    const int t = p.locations[i].tet;
-    count[t] += Eigen::Matrix3d::Identity();
-    normal_sum[t] += p.normals[i];
-    poll_every(i);
-  }
   const double beta = options.beta / nx;
-  const Eigen::VectorXd b = beta * gradient_transpose_times(p.mesh, normal_sum);
+  const double alpha = options.alpha / (p.length * p.length * nx);
 
   // Eq. (15) in units of l: f(p) is a length (1/l^2) and the Hessian an
   // inverse length (l^2); |T| is the volume of the domain, as in CT11. The
-  // one-ring terms are added into the two-ring Hessian term.
+  // two-ring Hessian term first, with nothing else of the system held (it is
+  // the solve's peak of memory); the one-ring terms are then added into it.
   SparseMatrix A;
-  const SparseMatrix stiffness = weighted_stiffness(p.mesh, count);
-  poll();
-  const SparseMatrix values = gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
-  poll();
-  const double alpha = options.alpha / (p.length * p.length * nx);
   if (options.gamma > 0) {
     hessian_energy(p.mesh).swap(A);  // Eigen 3.4's SparseMatrix has no move: = would copy
     poll();
     A *= options.gamma * p.length * p.length / tet_volumes(p.mesh).sum();  // H^T M~_V^-1 H
     poll();
-    add_to(A, stiffness, beta);
-    poll();
-  } else {
-    A = beta * stiffness;
   }
-  add_to(A, values, alpha);
+
+  // S^T S counts the samples in each tet and S^T N sums their normals, so
+  // G^T S^T S G = G^T diag(count_t I) G and G^T S^T N = G^T (sum of n_p per tet):
+  // b_v = beta / |X| sum over the tets t of v of grad(phi_v)|_t . (sum of n_p in t).
+  Eigen::VectorXd b;
+  {
+    std::vector<double> count(nt, 0.0);
+    std::vector<Vec3> normal_sum(nt, Vec3::Zero());
+    for (std::size_t i = 0; i < p.num_points; ++i) {
+      const int t = p.locations[i].tet;
+      count[t] += 1;
+      normal_sum[t] += p.normals[i];
+      poll_every(i);
+    }
+    b = beta * gradient_transpose_times(p.mesh, normal_sum);
+    std::vector<Vec3>().swap(normal_sum);
+    const SparseMatrix stiffness = weighted_stiffness(p.mesh, count);
+    poll();
+    if (options.gamma > 0)
+      add_to(A, stiffness, beta);
+    else
+      A = beta * stiffness;
+    poll();
+  }
+  add_to(A, gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows())), alpha);
   LinearSystem system;
   system.A.swap(A);
   system.b = std::move(b);
