@@ -30,9 +30,11 @@ Eigen::VectorXd stacked_positions(const Domain& domain) {
   return out;
 }
 
-DomainEnergy domain_energy(const Domain& domain, const OptimizerOptions& options) {
-  using namespace optimize_detail;
-  DomainEnergy energy;
+namespace optimize_detail {
+
+BlockEnergy block_energy(const Domain& domain, const OptimizerOptions& options) {
+  BlockEnergy energy(domain);
+  QuadraticAccumulator& q = energy.quadratic;
   energy.diameter = triangulation_diameter(domain);
   energy.fixed = boundary_vertices(domain, options.boundary_band * energy.diameter);
   detail::poll();  // the run's cancellation, between the steps
@@ -43,8 +45,6 @@ DomainEnergy domain_energy(const Domain& domain, const OptimizerOptions& options
     energy.crossing_tets += negative > 0 && negative < 4;
   }
 
-  QuadraticAccumulator q(domain);
-  detail::poll();
   // Lengths are measured in units of r(T), so that E is dimensionless and
   // the minimizer invariant to rigid motion and uniform scaling: w_a =
   // vol(t) / r^3 and w_m = area(a_t) / r^2 as in §3.3, E_a, E_m and E_d
@@ -61,11 +61,22 @@ DomainEnergy domain_energy(const Domain& domain, const OptimizerOptions& options
     if (options.damping && options.damping_weight > 0)
       add_damping_term(domain, energy.fixed, options.damping_weight / (r * r), q);
   }
-
+  q.finish_terms();
   detail::poll();
-  q.matrix().swap(energy.A);  // Eigen 3.4's SparseMatrix has no move: = would copy
-  energy.b = std::move(q.b);
-  energy.c = q.c;
+  return energy;
+}
+
+}  // namespace optimize_detail
+
+DomainEnergy domain_energy(const Domain& domain, const OptimizerOptions& options) {
+  optimize_detail::BlockEnergy blocks = optimize_detail::block_energy(domain, options);
+  DomainEnergy energy;
+  blocks.quadratic.matrix().swap(energy.A);  // Eigen 3.4's SparseMatrix has no move: = would copy
+  energy.b = std::move(blocks.quadratic.b);
+  energy.c = blocks.quadratic.c;
+  energy.fixed = std::move(blocks.fixed);
+  energy.diameter = blocks.diameter;
+  energy.crossing_tets = blocks.crossing_tets;
   return energy;
 }
 

@@ -40,17 +40,13 @@ void check(const OptimizerOptions& o) {
 // preconditioner. Scalar Jacobi is not invariant to rotations (the mid-edge
 // term couples x, y and z through n n^T) and converges slowly where that term
 // makes a block strongly anisotropic.
-std::vector<Eigen::Matrix3d> block_jacobi(const Eigen::SparseMatrix<double>& A,
+std::vector<Eigen::Matrix3d> block_jacobi(const optimize_detail::QuadraticAccumulator& A,
                                           const std::vector<bool>& fixed) {
-  const Eigen::Index n = A.cols() / 3;
+  const int n = static_cast<int>(fixed.size());
   std::vector<Eigen::Matrix3d> inverse(n, Eigen::Matrix3d::Identity());
-  tbb::parallel_for(Eigen::Index(0), n, [&](Eigen::Index v) {
+  tbb::parallel_for(0, n, [&](int v) {
     if (fixed[v]) return;
-    Eigen::Matrix3d block = Eigen::Matrix3d::Zero();
-    for (int k = 0; k < 3; ++k)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(A, 3 * v + k); it; ++it)
-        if (it.row() / 3 == v) block(it.row() % 3, k) = it.value();
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(block);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(A.diagonal_block(v));
     const Eigen::Vector3d lambda = eigen.eigenvalues();
     const double largest = lambda.cwiseAbs().maxCoeff();
     if (!(largest > 0)) return;
@@ -64,9 +60,9 @@ std::vector<Eigen::Matrix3d> block_jacobi(const Eigen::SparseMatrix<double>& A,
 // from x0 with the fixed vertices' coordinates held (their components of the
 // residual and of every direction are zero), stopped at a residual relative
 // to the initial one, which does not depend on where the domain sits.
-Eigen::VectorXd minimize(const DomainEnergy& energy, const Eigen::VectorXd& x0,
+Eigen::VectorXd minimize(const optimize_detail::BlockEnergy& energy, const Eigen::VectorXd& x0,
                          const OptimizerOptions& options, OptimizerReport& report) {
-  const Eigen::SparseMatrix<double>& A = energy.A;
+  const optimize_detail::QuadraticAccumulator& A = energy.quadratic;
   const Eigen::Index n = x0.size();
   const std::vector<Eigen::Matrix3d> inverse = block_jacobi(A, energy.fixed);
   auto mask = [&](Eigen::VectorXd& v) {
@@ -82,14 +78,14 @@ Eigen::VectorXd minimize(const DomainEnergy& energy, const Eigen::VectorXd& x0,
     });
   };
   Eigen::VectorXd x = x0, r, q;
-  detail::symmetric_product(A, x, q);
-  r = energy.b - q;
+  A.multiply(x, q);
+  r = A.b - q;
   mask(r);
   const double r0 = std::sqrt(detail::deterministic_dot(r, r));
   if (r0 == 0) return x;
   const detail::PcgResult cg = detail::preconditioned_cg(
       [&](const Eigen::VectorXd& p, Eigen::VectorXd& Ap) {
-        detail::symmetric_product(A, p, Ap);
+        A.multiply(p, Ap);
         mask(Ap);
       },
       precondition, r, x, options.cg_tolerance, r0, options.cg_max_iterations);
@@ -183,7 +179,8 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
   check(options);
   OptimizerReport report;
   if (domain.num_tets() == 0) return report;
-  const DomainEnergy energy = domain_energy(domain, options);
+  const optimize_detail::BlockEnergy energy = optimize_detail::block_energy(domain, options);
+  const optimize_detail::QuadraticAccumulator& A = energy.quadratic;
   detail::poll();  // the run's cancellation, between the steps of a round
   report.diameter = energy.diameter;
   report.crossing_tets = energy.crossing_tets;
@@ -191,10 +188,10 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
 
   const Eigen::VectorXd x0 = stacked_positions(domain);
   Eigen::VectorXd half_gradient;
-  detail::symmetric_product(energy.A, x0, half_gradient);
+  A.multiply(x0, half_gradient);
   detail::poll();
-  report.energy_before = x0.dot(half_gradient) - 2.0 * energy.b.dot(x0) + energy.c;  // E(x0)
-  half_gradient -= energy.b;
+  report.energy_before = x0.dot(half_gradient) - 2.0 * A.b.dot(x0) + A.c;  // E(x0)
+  half_gradient -= A.b;
   detail::poll();
   Eigen::VectorXd step = minimize(energy, x0, options, report) - x0;
 
@@ -236,7 +233,7 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
       continue;
     // E(x0 + a s) - E(x0) = a^2 s.As + 2 a s.(A x0 - b).
     Eigen::VectorXd A_step;
-    detail::symmetric_product(energy.A, step, A_step);
+    A.multiply(step, A_step);
     const double curvature = step.dot(A_step);
     const double slope = step.dot(half_gradient);
     energy_change = alpha * alpha * curvature + 2 * alpha * slope;

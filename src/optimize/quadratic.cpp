@@ -80,4 +80,28 @@ Eigen::SparseMatrix<double> QuadraticAccumulator::matrix() const {
   return A;
 }
 
+void QuadraticAccumulator::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  const int n = static_cast<int>(offsets_.size()) - 1;
+  y.resize(3 * static_cast<Eigen::Index>(n));
+  // y_j = sum over the blocks (i, j) of column j of A_ij^T x_i (A is symmetric).
+  detail::polled_parallel_ranges(n, [&](const tbb::blocked_range<int>& r) {
+    for (int j = r.begin(); j < r.end(); ++j) {
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      for (int s = offsets_[j]; s < offsets_[j + 1]; ++s) {
+        const Eigen::Vector3d xi = x.segment<3>(3 * static_cast<Eigen::Index>(rows_[s]));
+        sum += isotropic_[s] * xi;
+        if (coupled_index_[s] >= 0) sum.noalias() += coupled_[coupled_index_[s]].transpose() * xi;
+      }
+      y.segment<3>(3 * static_cast<Eigen::Index>(j)) = sum;
+    }
+  });
+}
+
+Eigen::Matrix3d QuadraticAccumulator::diagonal_block(int v) const {
+  const int s = block(v, v);
+  Eigen::Matrix3d d = isotropic_[s] * Eigen::Matrix3d::Identity();
+  if (coupled_index_[s] >= 0) d += coupled_[coupled_index_[s]];
+  return d;
+}
+
 }  // namespace pdd::optimize_detail
