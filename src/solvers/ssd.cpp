@@ -83,9 +83,10 @@ class SsdSolver final : public ImplicitSolver {
                             const std::vector<double>* warm_start) override {
     const auto start = Clock::now();
     stats_ = SolverStats();
-    const Problem p = make_problem(domain, points, "SSD solver", kWhyNormals);
+    Problem p = make_problem(domain, points, "SSD solver", kWhyNormals);
     const SsdOptions options = resolved(options_, p, points);
     const LinearSystem system = ssd_system(p, options);
+    p.release_samples();
     const SparseMatrix& A = system.A;
     const Eigen::VectorXd& b = system.b;
     stats_.assembly_seconds = seconds_since(start);
