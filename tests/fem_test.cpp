@@ -221,6 +221,22 @@ TEST_F(FemTest, GalerkinProductMatchesEigensProduct) {
   for (Eigen::Index j = 0; j < mine.cols(); ++j)
     for (int p = mine.outerIndexPtr()[j] + 1; p < mine.outerIndexPtr()[j + 1]; ++p)
       ASSERT_LT(mine.innerIndexPtr()[p - 1], mine.innerIndexPtr()[p]);
+
+  // In single precision (the multigrid's coarse levels): from A in double,
+  // each entry is the double product's rounded once; from A in single, within
+  // float's rounding of it. The same pattern.
+  const Eigen::SparseMatrix<float> from_double = galerkin_product<float>(P, A);
+  const Eigen::SparseMatrix<float> A_single = A.cast<float>();
+  const Eigen::SparseMatrix<float> from_single = galerkin_product<float>(P, A_single);
+  ASSERT_EQ(from_double.nonZeros(), mine.nonZeros());
+  ASSERT_EQ(from_single.nonZeros(), mine.nonZeros());
+  const double largest = mine.coeffs().cwiseAbs().maxCoeff();
+  for (Eigen::Index k = 0; k < mine.nonZeros(); ++k) {
+    ASSERT_EQ(from_double.innerIndexPtr()[k], mine.innerIndexPtr()[k]);
+    ASSERT_EQ(from_single.innerIndexPtr()[k], mine.innerIndexPtr()[k]);
+    ASSERT_EQ(from_double.valuePtr()[k], static_cast<float>(mine.valuePtr()[k]));
+    ASSERT_LT(std::abs(double(from_single.valuePtr()[k]) - mine.valuePtr()[k]), 1e-6 * largest);
+  }
 }
 
 // H^T M^-1 H, the squared Hessian energy by its definition.

@@ -90,8 +90,10 @@ SparseMatrix gram_matrix(const SparseMatrix& A, const Eigen::VectorXd& d);
 
 // The Galerkin product P^T A P (P: n x m, A: n x n symmetric, all entries
 // stored), column by column in parallel and deterministic: the coarse
-// operators of the multigrid solver.
-SparseMatrix galerkin_product(const SparseMatrix& P, const SparseMatrix& A);
+// operators of the multigrid solver. A and the result in double or single
+// precision (Out = float: the multigrid's coarse levels); the sums in double.
+template <class Out = double, class Scalar = double>
+Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::SparseMatrix<Scalar>& A);
 
 // A B, column by column in parallel and deterministic.
 SparseMatrix sparse_product(const SparseMatrix& A, const SparseMatrix& B);

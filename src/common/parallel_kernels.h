@@ -45,13 +45,14 @@ inline double deterministic_dot(const Eigen::VectorXd& x, const Eigen::VectorXd&
   return deterministic_sum(x.size(), [&](Eigen::Index i) { return x[i] * y[i]; });
 }
 
-// y = M^T x: y_j = column j of M . x.
-inline void transposed_product(const Eigen::SparseMatrix<double>& M, const Eigen::VectorXd& x,
-                               Eigen::VectorXd& y) {
+// y = M^T x: y_j = column j of M . x, summed in double whatever M's scalar.
+template <class Scalar>
+void transposed_product(const Eigen::SparseMatrix<Scalar>& M, const Eigen::VectorXd& x,
+                        Eigen::VectorXd& y) {
   y.resize(M.cols());
   const int* outer = M.outerIndexPtr();
   const int* inner = M.innerIndexPtr();
-  const double* value = M.valuePtr();
+  const Scalar* value = M.valuePtr();
   // Four partial sums per column: one sum is a chain of dependent additions
   // that stalls on their latency (the two-ring SSD matrix has 75 per column).
   for_blocks(M.cols(), [&](Eigen::Index begin, Eigen::Index end) {
@@ -60,20 +61,21 @@ inline void transposed_product(const Eigen::SparseMatrix<double>& M, const Eigen
       int p = outer[j];
       const int last = outer[j + 1];
       for (; p + 4 <= last; p += 4) {
-        s0 += value[p] * x[inner[p]];
-        s1 += value[p + 1] * x[inner[p + 1]];
-        s2 += value[p + 2] * x[inner[p + 2]];
-        s3 += value[p + 3] * x[inner[p + 3]];
+        s0 += double(value[p]) * x[inner[p]];
+        s1 += double(value[p + 1]) * x[inner[p + 1]];
+        s2 += double(value[p + 2]) * x[inner[p + 2]];
+        s3 += double(value[p + 3]) * x[inner[p + 3]];
       }
-      for (; p < last; ++p) s0 += value[p] * x[inner[p]];
+      for (; p < last; ++p) s0 += double(value[p]) * x[inner[p]];
       y[j] = (s0 + s1) + (s2 + s3);
     }
   });
 }
 
 // y = A x for a symmetric A with every entry stored (A = A^T).
-inline void symmetric_product(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& x,
-                              Eigen::VectorXd& y) {
+template <class Scalar>
+void symmetric_product(const Eigen::SparseMatrix<Scalar>& A, const Eigen::VectorXd& x,
+                       Eigen::VectorXd& y) {
   transposed_product(A, x, y);
 }
 

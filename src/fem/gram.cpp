@@ -40,9 +40,14 @@ struct Scratch {
 // add(i, x) for every contribution x to entry (i, j), in an order that
 // depends only on j. Both run in parallel over j; the result is
 // deterministic.
+template <class Out, class Pattern, class Values, class Prepare>
+Eigen::SparseMatrix<Out> accumulate_columns_as(int rows, int n, Pattern pattern, Values values,
+                                               const std::vector<int>* order, Prepare prepare);
 template <class Pattern, class Values, class Prepare>
 SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values,
-                                const std::vector<int>* order, Prepare prepare);
+                                const std::vector<int>* order, Prepare prepare) {
+  return accumulate_columns_as<double>(rows, n, pattern, values, order, prepare);
+}
 template <class Pattern, class Values>
 SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values) {
   return accumulate_columns(rows, n, pattern, values, nullptr, [](const int*, const int*) {});
@@ -54,9 +59,10 @@ SparseMatrix accumulate_columns(int n, Pattern pattern, Values values) {
 // The same, with the values summed in slices of the columns taken in `order`
 // (all of 0..n-1; increasing when null), prepare(first, last) called before
 // each slice's columns [first, last): data that only those columns read.
-template <class Pattern, class Values, class Prepare>
-SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values,
-                                const std::vector<int>* order, Prepare prepare) {
+// The sums are in double; the result is stored in Out.
+template <class Out, class Pattern, class Values, class Prepare>
+Eigen::SparseMatrix<Out> accumulate_columns_as(int rows, int n, Pattern pattern, Values values,
+                                               const std::vector<int>* order, Prepare prepare) {
   tbb::enumerable_thread_specific<Scratch> scratch([rows] {
     Scratch s;
     s.marker.assign(rows, -1);
@@ -81,11 +87,11 @@ SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values,
   if (start[n] > std::numeric_limits<int>::max())
     throw std::length_error("fem: product has more non-zeros than an int index can hold");
 
-  SparseMatrix result(rows, n);
+  Eigen::SparseMatrix<Out> result(rows, n);
   result.resizeNonZeros(static_cast<Eigen::Index>(start[n]));
   for (int j = 0; j <= n; ++j) result.outerIndexPtr()[j] = static_cast<int>(start[j]);
   int* r_inner = result.innerIndexPtr();
-  double* r_value = result.valuePtr();
+  Out* r_value = result.valuePtr();
   for (auto& s : scratch) std::fill(s.marker.begin(), s.marker.end(), -1);
 
   auto fill = [&](int j) {
@@ -103,7 +109,7 @@ SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values,
     long long out = start[j];
     for (int i : s.touched) {
       r_inner[out] = i;
-      r_value[out] = s.accumulator[i];
+      r_value[out] = static_cast<Out>(s.accumulator[i]);
       ++out;
     }
   };
@@ -197,10 +203,17 @@ SparseMatrix sparse_product(const SparseMatrix& A, const SparseMatrix& B) {
       [&](int j, auto&& add) { for_each_term(j, add); });
 }
 
-SparseMatrix galerkin_product(const SparseMatrix& P, const SparseMatrix& A) {
+namespace {
+
+template <class Out, class Scalar>
+Eigen::SparseMatrix<Out> galerkin(const SparseMatrix& P, const Eigen::SparseMatrix<Scalar>& A) {
   if (A.rows() != A.cols() || P.rows() != A.rows())
     throw std::invalid_argument("galerkin_product: P must have as many rows as A");
-  const Columns p(P), a(A);
+  if (!A.isCompressed()) throw std::invalid_argument("galerkin_product: A must be compressed");
+  const Columns p(P);
+  const int* a_outer = A.outerIndexPtr();
+  const int* a_inner = A.innerIndexPtr();
+  const Scalar* a_value = A.valuePtr();
   const Columns r(P, Columns::Transposed{});  // column i of r is row i of P
   // Column j = P^T (A p_j): A p_j summed first, on its few hundred fine rows,
   // then each fine row's sum mapped through its row of P. Mapping every term
@@ -228,9 +241,9 @@ SparseMatrix galerkin_product(const SparseMatrix& P, const SparseMatrix& A) {
     }
     const int call = ++f.call;  // the pattern's pass and the values' reach each column
     for (int pk = p.outer[j]; pk < p.outer[j + 1]; ++pk)
-      for (int ai = a.outer[p.inner[pk]]; ai < a.outer[p.inner[pk] + 1]; ++ai) {
-        const int i = a.inner[ai];
-        const double x = p.value[pk] * a.value[ai];
+      for (int ai = a_outer[p.inner[pk]]; ai < a_outer[p.inner[pk] + 1]; ++ai) {
+        const int i = a_inner[ai];
+        const double x = p.value[pk] * static_cast<double>(a_value[ai]);
         if (f.marker[i] != call) {
           f.marker[i] = call;
           f.sum[i] = x;
@@ -241,8 +254,9 @@ SparseMatrix galerkin_product(const SparseMatrix& P, const SparseMatrix& A) {
       }
     return f;
   };
-  return accumulate_columns(
-      static_cast<int>(P.cols()),
+  const int m = static_cast<int>(P.cols());
+  return accumulate_columns_as<Out>(
+      m, m,
       [&](int j, auto&& visit) {
         const Fine& f = fine_column(j);
         for (int i : f.touched)
@@ -252,8 +266,26 @@ SparseMatrix galerkin_product(const SparseMatrix& P, const SparseMatrix& A) {
         const Fine& f = fine_column(j);
         for (int i : f.touched)
           for (int q = r.outer[i]; q < r.outer[i + 1]; ++q) add(r.inner[q], f.sum[i] * r.value[q]);
-      });
+      },
+      nullptr, [](const int*, const int*) {});
 }
+
+}  // namespace
+
+template <class Out, class Scalar>
+Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::SparseMatrix<Scalar>& A) {
+  if (A.isCompressed()) return galerkin<Out>(P, A);
+  Eigen::SparseMatrix<Scalar> compressed = A;
+  compressed.makeCompressed();
+  return galerkin<Out>(P, compressed);
+}
+template SparseMatrix galerkin_product<double, double>(const SparseMatrix&, const SparseMatrix&);
+template SparseMatrix galerkin_product<double, float>(const SparseMatrix&,
+                                                      const Eigen::SparseMatrix<float>&);
+template Eigen::SparseMatrix<float> galerkin_product<float, double>(const SparseMatrix&,
+                                                                    const SparseMatrix&);
+template Eigen::SparseMatrix<float> galerkin_product<float, float>(
+    const SparseMatrix&, const Eigen::SparseMatrix<float>&);
 
 SparseMatrix hessian_energy(const TetMesh& mesh) {
   // Column j = sum over v in the ring of j of (1 / m_v) H_v^T (H_v)_{:, j},

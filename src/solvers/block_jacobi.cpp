@@ -16,15 +16,16 @@
 
 namespace pdd::detail {
 
-BlockJacobi::BlockJacobi(const SparseMatrix& A, double coupling, int max_block) {
+template <class Scalar>
+BlockJacobi::BlockJacobi(const Eigen::SparseMatrix<Scalar>& A, double coupling, int max_block) {
   if (max_block > kMaxBlock) throw std::invalid_argument("BlockJacobi: blocks of at most 64");
   const int n = static_cast<int>(A.rows());
-  const Eigen::VectorXd diagonal = A.diagonal();
+  const Eigen::VectorXd diagonal = A.diagonal().template cast<double>();
   if (!(diagonal.minCoeff() > 0))
     throw SolverError("multigrid: the system matrix has a non-positive diagonal entry");
   const int* outer = A.outerIndexPtr();
   const int* inner = A.innerIndexPtr();
-  const double* value = A.valuePtr();
+  const Scalar* value = A.valuePtr();
 
   // The strong couplings i > j of each column, found in parallel, then joined
   // in column order (the groups do not depend on the thread count).
@@ -92,7 +93,7 @@ BlockJacobi::BlockJacobi(const SparseMatrix& A, double coupling, int max_block) 
       const int* last = inner + outer[j + 1];
       for (int a = 0; a < m; ++a) {
         const int* at = std::lower_bound(first, last, members[a]);
-        block(a, c) = at != last && *at == members[a] ? value[at - inner] : 0.0;
+        block(a, c) = at != last && *at == members[a] ? static_cast<double>(value[at - inner]) : 0.0;
       }
     }
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(block);
@@ -115,6 +116,9 @@ BlockJacobi::BlockJacobi(const SparseMatrix& A, double coupling, int max_block) 
                                      block_start_[bad - definite.begin()]) +
                       " strongly coupled unknowns is not positive definite");
 }
+
+template BlockJacobi::BlockJacobi(const SparseMatrix&, double, int);
+template BlockJacobi::BlockJacobi(const Eigen::SparseMatrix<float>&, double, int);
 
 template <bool kSqrt>
 void BlockJacobi::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {

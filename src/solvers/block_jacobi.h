@@ -29,7 +29,9 @@ class BlockJacobi {
   // (coupling >= 1: plain Jacobi; max_block <= kMaxBlock). A is symmetric with all entries stored.
   // Throws SolverError when a diagonal entry or a group's block is not
   // positive definite.
-  BlockJacobi(const SparseMatrix& A, double coupling, int max_block);
+  // A in double or single precision (Scalar = double or float).
+  template <class Scalar>
+  BlockJacobi(const Eigen::SparseMatrix<Scalar>& A, double coupling, int max_block);
 
   // z = D'^-1 r, D' the block diagonal (z may not alias r).
   void apply_inverse(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;

@@ -27,7 +27,8 @@ SparseMatrix compressed_transpose(const SparseMatrix& M) {
 // The largest eigenvalue of D^-1 A (A symmetric positive definite, D the
 // smoother's block diagonal) from `steps` Lanczos steps on D^-1/2 A D^-1/2,
 // from a fixed start.
-double largest_eigenvalue(const SparseMatrix& A, const BlockJacobi& D, int steps) {
+template <class Scalar>
+double largest_eigenvalue(const Eigen::SparseMatrix<Scalar>& A, const BlockJacobi& D, int steps) {
   const Eigen::Index n = A.rows();
   steps = static_cast<int>(std::min<Eigen::Index>(steps, n));
   Eigen::VectorXd v(n), previous = Eigen::VectorXd::Zero(n), w(n), scaled(n), scaled_product(n);
@@ -64,14 +65,28 @@ double largest_eigenvalue(const SparseMatrix& A, const BlockJacobi& D, int steps
 
 struct Multigrid::Impl {
   struct Level {
-    const SparseMatrix* A = nullptr;  // level 0: the caller's; others: `galerkin`
-    SparseMatrix galerkin;            // P^T A P of the finer level
-    const SparseMatrix* P = nullptr;  // to this level from the next coarser one
-    SparseMatrix R;                   // P^T, stored by columns: the rows of P
-    BlockJacobi smoother;             // D, the diagonal with blocks of strongly coupled unknowns
-    double largest = 0;               // of D^-1 A, a bound from Lanczos
+    // The level's matrix: level 0's is the caller's; a coarse level's is
+    // P^T A P of the finer one, in single precision but on the coarsest
+    // level (factored by CHOLMOD): it only enters the V-cycle, whose
+    // products sum in double.
+    const SparseMatrix* A = nullptr;  // level 0 and the coarsest
+    SparseMatrix coarsest;
+    Eigen::SparseMatrix<float> single;  // the others
+    const SparseMatrix* P = nullptr;    // to this level from the next coarser one
+    SparseMatrix R;                     // P^T, stored by columns: the rows of P
+    BlockJacobi smoother;               // D, the diagonal with blocks of strongly coupled unknowns
+    double largest = 0;                 // of D^-1 A, a bound from Lanczos
     // Work vectors (the V-cycle is const but reuses them: one at a time).
     mutable Eigen::VectorXd residual, correction, direction, product, scaled, coarse_rhs, coarse_x;
+
+    void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+      if (A)
+        symmetric_product(*A, x, y);
+      else
+        symmetric_product(single, x, y);
+    }
+    Eigen::Index size() const { return A ? A->rows() : single.rows(); }
+    Eigen::Index nonzeros() const { return A ? A->nonZeros() : single.nonZeros(); }
   };
   MultigridOptions options;
   std::vector<Level> levels;
@@ -93,7 +108,7 @@ struct Multigrid::Impl {
     if (zero_start)
       r = b;
     else {
-      symmetric_product(*l.A, x, q);
+      l.multiply(x, q);
       r = b - q;
     }
     l.smoother.apply_inverse(r, z);
@@ -106,7 +121,7 @@ struct Multigrid::Impl {
     });
     for (int k = 1; k < options.smoothing_degree; ++k) {
       poll();  // the run's cancellation, inside a CG iteration (seconds at 1M)
-      symmetric_product(*l.A, d, q);
+      l.multiply(d, q);
       const double c1 = (2.0 * k - 1) / (2.0 * k + 3), c2 = (8.0 * k + 4) / (2.0 * k + 3) / rho;
       r -= q;
       l.smoother.apply_inverse(r, z);
@@ -131,7 +146,7 @@ struct Multigrid::Impl {
     // Restrict the residual, correct from the coarser level, smooth again.
     const Level& c = levels[k + 1];
     Eigen::VectorXd& r = l.residual;
-    symmetric_product(*l.A, x, l.product);
+    l.multiply(x, l.product);
     r = b - l.product;
     transposed_product(*c.P, r, c.coarse_rhs);
     vcycle(k + 1, c.coarse_rhs, c.coarse_x);
@@ -154,26 +169,37 @@ void Multigrid::setup(const SparseMatrix& A, const std::vector<SparseMatrix>& pr
   d.levels.reserve(prolongations.size() + 1);
   d.levels.resize(1);
   d.levels[0].A = &A;
-  for (const SparseMatrix& P : prolongations) {
-    const Impl::Level& fine = d.levels.back();
-    if (P.rows() != fine.A->rows())
+  // The smoother's blocks and bound of each level but the coarsest.
+  auto finish = [&](Impl::Level& l, const auto& matrix) {
+    l.smoother = BlockJacobi(matrix, options.block_coupling, options.max_block);
+    poll();
+    // Lanczos' estimate lies below the true value: a margin of 10 %.
+    l.largest = 1.1 * largest_eigenvalue(matrix, l.smoother, 12);
+    poll();
+  };
+  auto coarsest = [&](std::size_t k, Eigen::Index size) {
+    return k == prolongations.size() || size <= static_cast<Eigen::Index>(options.coarsest_size);
+  };
+  if (!coarsest(0, A.rows())) finish(d.levels[0], A);
+  for (std::size_t k = 0; !coarsest(k, d.levels[k].size()); ++k) {
+    const SparseMatrix& P = prolongations[k];
+    const Impl::Level& fine = d.levels[k];
+    if (P.rows() != fine.size())
       throw std::invalid_argument("multigrid: a prolongation does not match its fine level");
-    if (fine.A->rows() <= static_cast<Eigen::Index>(options.coarsest_size)) break;
     // Built in place (the levels are reserved, so `fine` stays valid), and
     // swapped in: Eigen 3.4's SparseMatrix has no move, = and push_back copy.
     Impl::Level& coarse = d.levels.emplace_back();
     coarse.P = &P;
     compressed_transpose(P).swap(coarse.R);
-    galerkin_product(P, *fine.A).swap(coarse.galerkin);
-    coarse.A = &coarse.galerkin;
-    poll();
-  }
-  for (std::size_t k = 0; k + 1 < d.levels.size(); ++k) {
-    Impl::Level& l = d.levels[k];
-    l.smoother = BlockJacobi(*l.A, options.block_coupling, options.max_block);
-    poll();
-    // Lanczos' estimate lies below the true value: a margin of 10 %.
-    l.largest = 1.1 * largest_eigenvalue(*l.A, l.smoother, 12);
+    if (coarsest(k + 1, P.cols())) {
+      (fine.A ? galerkin_product(P, *fine.A) : galerkin_product(P, fine.single))
+          .swap(coarse.coarsest);
+      coarse.A = &coarse.coarsest;
+    } else {
+      (fine.A ? galerkin_product<float>(P, *fine.A) : galerkin_product<float>(P, fine.single))
+          .swap(coarse.single);
+      finish(coarse, coarse.single);
+    }
     poll();
   }
   d.coarsest = std::make_unique<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>>();
@@ -197,10 +223,10 @@ void Multigrid::clear() {
 
 std::size_t Multigrid::num_levels() const { return impl_->levels.size(); }
 std::size_t Multigrid::level_size(std::size_t level) const {
-  return static_cast<std::size_t>(impl_->levels.at(level).A->rows());
+  return static_cast<std::size_t>(impl_->levels.at(level).size());
 }
 std::size_t Multigrid::level_nonzeros(std::size_t level) const {
-  return static_cast<std::size_t>(impl_->levels.at(level).A->nonZeros());
+  return static_cast<std::size_t>(impl_->levels.at(level).nonzeros());
 }
 
 CgResult multigrid_cg(const SparseMatrix& A, const Multigrid& M, const Eigen::VectorXd& b,

@@ -1,7 +1,8 @@
 // Private to src/solvers: multigrid-preconditioned conjugate gradients.
 //
 // The levels are given as prolongations (the progressive hierarchy of
-// hierarchy.h); the coarse operators are the Galerkin products P^T A P, the
+// hierarchy.h); the coarse operators are the Galerkin products P^T A P, held
+// in single precision (they only precondition; CG's products are A's), the
 // smoother is a Chebyshev polynomial in D^-1 A (D the diagonal of A with
 // blocks for strongly coupled unknowns, block_jacobi.h), run on all cores,
 // and the coarsest level is factored by CHOLMOD. Hand-written on
