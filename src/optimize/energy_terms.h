@@ -79,6 +79,9 @@ class QuadraticAccumulator {
       });
     };
     each_column([&](int s, const Eigen::Matrix3d&) { touched[s] = 1; }, false);
+    std::size_t added = 0;
+    for (std::size_t s = 0; s < touched.size(); ++s) added += touched[s] && coupled_index_[s] < 0;
+    coupled_.reserve(coupled_.size() + added);  // grown by doubling, it held up to twice that
     for (std::size_t s = 0; s < touched.size(); ++s) {
       if (touched[s] && coupled_index_[s] < 0) {
         coupled_index_[s] = static_cast<int>(coupled_.size());

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <memory>
 #include <string>
 
 namespace pdd {
@@ -179,21 +180,24 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
   check(options);
   OptimizerReport report;
   if (domain.num_tets() == 0) return report;
-  const optimize_detail::BlockEnergy energy = optimize_detail::block_energy(domain, options);
-  const optimize_detail::QuadraticAccumulator& A = energy.quadratic;
+  // E(T) is freed before the new domain is built (the round's peak of
+  // memory), and built again, the same, if a collapsed tet sends moves back.
+  auto energy = std::make_unique<optimize_detail::BlockEnergy>(
+      optimize_detail::block_energy(domain, options));
   detail::poll();  // the run's cancellation, between the steps of a round
-  report.diameter = energy.diameter;
-  report.crossing_tets = energy.crossing_tets;
-  for (bool f : energy.fixed) report.fixed_vertices += f;
+  report.diameter = energy->diameter;
+  report.crossing_tets = energy->crossing_tets;
+  for (bool f : energy->fixed) report.fixed_vertices += f;
 
   const Eigen::VectorXd x0 = stacked_positions(domain);
   Eigen::VectorXd half_gradient;
-  A.multiply(x0, half_gradient);
+  energy->quadratic.multiply(x0, half_gradient);
   detail::poll();
-  report.energy_before = x0.dot(half_gradient) - 2.0 * A.b.dot(x0) + A.c;  // E(x0)
-  half_gradient -= A.b;
+  report.energy_before =
+      x0.dot(half_gradient) - 2.0 * energy->quadratic.b.dot(x0) + energy->quadratic.c;  // E(x0)
+  half_gradient -= energy->quadratic.b;
   detail::poll();
-  Eigen::VectorXd step = minimize(energy, x0, options, report) - x0;
+  Eigen::VectorXd step = minimize(*energy, x0, options, report) - x0;
 
   // Guard. The triangulation is rebuilt as a Delaunay one after the move, so
   // no element of it can be inverted; what can go wrong is a vertex leaving
@@ -232,8 +236,11 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
                                  located)))
       continue;
     // E(x0 + a s) - E(x0) = a^2 s.As + 2 a s.(A x0 - b).
+    if (!energy)
+      energy = std::make_unique<optimize_detail::BlockEnergy>(
+          optimize_detail::block_energy(domain, options));
     Eigen::VectorXd A_step;
-    A.multiply(step, A_step);
+    energy->quadratic.multiply(step, A_step);
     const double curvature = step.dot(A_step);
     const double slope = step.dot(half_gradient);
     energy_change = alpha * alpha * curvature + 2 * alpha * slope;
@@ -246,12 +253,13 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
     }
     if (std::find(moving.begin(), moving.end(), 1) == moving.end()) break;
     detail::poll();
+    energy.reset();
     Domain moved = domain.moved(positions, carried_values(domain, moving, located));
     detail::poll();
     if (send_back(collapsed_vertices(moved, moving))) continue;
     for (Eigen::Index v = 0; v < n; ++v)
       report.max_displacement =
-          std::max(report.max_displacement, (x - x0).segment<3>(3 * v).norm() / energy.diameter);
+          std::max(report.max_displacement, (x - x0).segment<3>(3 * v).norm() / report.diameter);
     domain = std::move(moved);
     break;
   }
