@@ -203,13 +203,15 @@ SparseMatrix sparse_product(const SparseMatrix& A, const SparseMatrix& B) {
       [&](int j, auto&& add) { for_each_term(j, add); });
 }
 
-namespace {
-
 template <class Out, class Scalar>
-Eigen::SparseMatrix<Out> galerkin(const SparseMatrix& P, const Eigen::SparseMatrix<Scalar>& A) {
+Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::SparseMatrix<Scalar>& A) {
   if (A.rows() != A.cols() || P.rows() != A.rows())
     throw std::invalid_argument("galerkin_product: P must have as many rows as A");
-  if (!A.isCompressed()) throw std::invalid_argument("galerkin_product: A must be compressed");
+  if (!A.isCompressed()) {
+    Eigen::SparseMatrix<Scalar> compressed = A;
+    compressed.makeCompressed();
+    return galerkin_product<Out>(P, compressed);
+  }
   const Columns p(P);
   const int* a_outer = A.outerIndexPtr();
   const int* a_inner = A.innerIndexPtr();
@@ -268,16 +270,6 @@ Eigen::SparseMatrix<Out> galerkin(const SparseMatrix& P, const Eigen::SparseMatr
           for (int q = r.outer[i]; q < r.outer[i + 1]; ++q) add(r.inner[q], f.sum[i] * r.value[q]);
       },
       nullptr, [](const int*, const int*) {});
-}
-
-}  // namespace
-
-template <class Out, class Scalar>
-Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::SparseMatrix<Scalar>& A) {
-  if (A.isCompressed()) return galerkin<Out>(P, A);
-  Eigen::SparseMatrix<Scalar> compressed = A;
-  compressed.makeCompressed();
-  return galerkin<Out>(P, compressed);
 }
 template SparseMatrix galerkin_product<double, double>(const SparseMatrix&, const SparseMatrix&);
 template SparseMatrix galerkin_product<double, float>(const SparseMatrix&,
