@@ -182,8 +182,11 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
   if (domain.num_tets() == 0) return report;
   // E(T) is freed before the new domain is built (the round's peak of
   // memory), and built again, the same, if a collapsed tet sends moves back.
-  auto energy = std::make_unique<optimize_detail::BlockEnergy>(
-      optimize_detail::block_energy(domain, options));
+  auto build_energy = [&] {
+    return std::make_unique<optimize_detail::BlockEnergy>(
+        optimize_detail::block_energy(domain, options));
+  };
+  auto energy = build_energy();
   detail::poll();  // the run's cancellation, between the steps of a round
   report.diameter = energy->diameter;
   report.crossing_tets = energy->crossing_tets;
@@ -236,9 +239,7 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
                                  located)))
       continue;
     // E(x0 + a s) - E(x0) = a^2 s.As + 2 a s.(A x0 - b).
-    if (!energy)
-      energy = std::make_unique<optimize_detail::BlockEnergy>(
-          optimize_detail::block_energy(domain, options));
+    if (!energy) energy = build_energy();
     Eigen::VectorXd A_step;
     energy->quadratic.multiply(step, A_step);
     const double curvature = step.dot(A_step);
