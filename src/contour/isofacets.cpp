@@ -20,6 +20,13 @@ Vec3 tet_gradient(const std::array<Vec3, 4>& v, const std::array<double, 4>& f) 
   return E.partialPivLu().solve(Vec3(f[1] - f[0], f[2] - f[0], f[3] - f[0]));
 }
 
+// Whether f changes sign over tet t (a value equal to the isovalue counts as positive).
+bool crosses(const TetMesh& mesh, const std::vector<double>& f, double isovalue, int t) {
+  int negative = 0;
+  for (int v : mesh.tets[t]) negative += f[v] < isovalue;
+  return negative > 0 && negative < 4;
+}
+
 // The isofacet of tet t, if f changes sign over it.
 bool isofacet(const TetMesh& mesh, const std::vector<double>& f, double isovalue, int t,
               Isofacet& a) {
@@ -70,24 +77,30 @@ bool isofacet(const TetMesh& mesh, const std::vector<double>& f, double isovalue
 std::vector<Isofacet> isofacets(const TetMesh& mesh, const std::vector<double>& f,
                                 double isovalue) {
   // Blocks of tets in parallel, each writing its facets after those of the
-  // blocks before it: tet order, whatever the thread count.
+  // blocks before it: tet order, whatever the thread count. The facets are
+  // counted first and written in place (grown per block and then gathered,
+  // they took three times the output's memory at the peak).
   constexpr int kBlock = 8192;
   const int m = static_cast<int>(mesh.tets.size());
   const int blocks = (m + kBlock - 1) / kBlock;
-  std::vector<std::vector<Isofacet>> found(blocks);
+  std::vector<std::size_t> offset(blocks + 1, 0);
   detail::polled_parallel_for(
       blocks,
       [&](int k) {
-        Isofacet a;
         for (int t = k * kBlock; t < std::min(m, (k + 1) * kBlock); ++t)
-          if (isofacet(mesh, f, isovalue, t, a)) found[k].push_back(a);
+          offset[k + 1] += crosses(mesh, f, isovalue, t);
       },
       4);
-  std::size_t total = 0;
-  for (const auto& b : found) total += b.size();
-  std::vector<Isofacet> out;
-  out.reserve(total);
-  for (auto& b : found) out.insert(out.end(), b.begin(), b.end());
+  for (int k = 0; k < blocks; ++k) offset[k + 1] += offset[k];
+  std::vector<Isofacet> out(offset[blocks]);
+  detail::polled_parallel_for(
+      blocks,
+      [&](int k) {
+        std::size_t next = offset[k];
+        for (int t = k * kBlock; t < std::min(m, (k + 1) * kBlock); ++t)
+          if (crosses(mesh, f, isovalue, t)) isofacet(mesh, f, isovalue, t, out[next++]);
+      },
+      4);
   return out;
 }
 
