@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
+#include <utility>
 
 #include "support/shapes.h"
 
@@ -221,6 +223,78 @@ TEST(Domain, CopyIsIndependent) {
   b.insert({Vec3(0.01, 0.02, 0.03)});
   EXPECT_EQ(b.num_vertices(), a.num_vertices() + 1);
   EXPECT_EQ(a.mesh().tets, a.tets());
+}
+
+// A released triangulation comes back the same: the same tets found for the
+// same points, with the same coordinates, and the same results from the moves
+// and insertions that rebuild or change it (on a lattice too, where every
+// cell is cospherical with its neighbours).
+TEST(Domain, AReleasedTriangulationIsRestoredTheSame) {
+  std::vector<Vec3> lattice;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      for (int k = 0; k < 6; ++k) lattice.emplace_back(0.4 * i - 1, 0.4 * j - 1, 0.4 * k - 1);
+  for (Domain d : {Domain::initial(test::sample_sphere(400)), Domain(lattice)}) {
+    std::vector<double> f;
+    for (const Vec3& p : d.vertices()) f.push_back(p.x() - 0.5 * p.y() * p.z());
+    d.set_f(f);
+    const Domain live = d;
+    d.release_triangulation();
+    EXPECT_TRUE(d.triangulation_released());
+    EXPECT_EQ(d.tets(), live.tets());
+    EXPECT_EQ(d.tet_neighbors(), live.tet_neighbors());
+    const std::vector<Vec3> queries = random_points_in_ball(300, 0.9, 11);
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      const int near = static_cast<int>(i % d.num_vertices());
+      for (const auto& [a, b] : {std::pair(d.locate(queries[i]), live.locate(queries[i])),
+                                 std::pair(d.locate(queries[i], near), live.locate(queries[i], near))}) {
+        EXPECT_EQ(a.tet, b.tet);
+        EXPECT_EQ(a.barycentric, b.barycentric);
+      }
+    }
+    EXPECT_FALSE(d.triangulation_released());
+
+    std::mt19937 rng(12);
+    std::uniform_real_distribution<double> jitter(-0.02, 0.02);
+    std::vector<Vec3> positions = d.vertices();
+    for (std::size_t i = 0; i < positions.size(); ++i)
+      if (!d.on_boundary_sphere(static_cast<int>(i)) && positions[i].norm() < 0.8)
+        positions[i] += Vec3(jitter(rng), jitter(rng), jitter(rng));
+    d.release_triangulation();
+    const Domain moved = d.moved(positions), moved_live = live.moved(positions);
+    EXPECT_EQ(moved.tets(), moved_live.tets());
+    EXPECT_EQ(moved.f(), moved_live.f());
+
+    // An insertion into the restored cells numbers the new tets in another
+    // order, but they are the same tets, with the same vertices and f.
+    Domain inserted = d, inserted_live = live;
+    inserted.release_triangulation();
+    const std::vector<Vec3> extra = random_points_in_ball(50, 0.7, 13);
+    EXPECT_EQ(inserted.insert(extra), inserted_live.insert(extra));
+    EXPECT_EQ(inserted.vertices(), inserted_live.vertices());
+    EXPECT_EQ(inserted.f(), inserted_live.f());
+    auto sorted = [](std::vector<std::array<int, 4>> tets) {
+      for (auto& t : tets) std::sort(t.begin(), t.end());
+      std::sort(tets.begin(), tets.end());
+      return tets;
+    };
+    EXPECT_EQ(sorted(inserted.tets()), sorted(inserted_live.tets()));
+
+    // Translated while released, and copied: located where the vertices now are.
+    Domain translated = live, translated_live = live;
+    translated.release_triangulation();
+    const Vec3 offset(3e4, -2, 0.5);
+    translated.translate(offset);
+    translated_live.translate(offset);
+    const Domain copy = translated;
+    EXPECT_TRUE(copy.triangulation_released());
+    EXPECT_TRUE(translated.triangulation_released());
+    EXPECT_EQ(copy.vertices(), translated_live.vertices());
+    for (const Vec3& q : queries) {
+      EXPECT_EQ(translated.locate(q + offset).tet, translated_live.locate(q + offset).tet);
+      EXPECT_EQ(copy.locate(q + offset).tet, translated_live.locate(q + offset).tet);
+    }
+  }
 }
 
 TEST(RadiusEdgeRatio, RegularTetIsSqrt6Over4) {

@@ -453,6 +453,13 @@ TEST(Pipeline, ATranslatedInputGivesTheTranslatedMesh) {
   for (std::size_t i = 0; i < r.domain.num_vertices(); ++i)
     EXPECT_LT((s.domain.vertices()[i] - shift - r.domain.vertices()[i]).norm(), 1e-6) << i;
   for (const Vec3& v : iteration_vertices) EXPECT_NEAR((v - shift).norm(), 1, 0.1);
+  // The final solve freed the domain's triangulation (its peak of memory);
+  // rebuilt when asked, it locates where the translated vertices are.
+  EXPECT_TRUE(s.domain.triangulation_released());
+  for (std::size_t i = 0; i < input.size(); i += 10)
+    EXPECT_NEAR(s.domain.interpolate(shifted.points[i], s.domain.f()),
+                r.domain.interpolate(input.points[i], r.domain.f()), 1e-6);
+  EXPECT_FALSE(s.domain.triangulation_released());
 }
 
 TEST(Pipeline, OtherDomainStrategiesReconstructTheSphere) {

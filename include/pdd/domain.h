@@ -131,6 +131,15 @@ class Domain {
   // caller that has located them already.
   Domain moved(const std::vector<Vec3>& new_positions, std::vector<double> f) const;
 
+  // Frees the Delaunay triangulation behind point location, insertion and the
+  // moves (about 500 bytes per vertex; the vertices, tets, neighbours and f
+  // stay, and a copy is released too). The first call that needs it rebuilds
+  // it from the tets, the same, in linear time. For a solve that has located
+  // its samples and needs only the tets. Not concurrently with other calls on
+  // this domain.
+  void release_triangulation() const;
+  bool triangulation_released() const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

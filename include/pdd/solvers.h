@@ -21,6 +21,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pdd {
@@ -220,10 +221,22 @@ class ImplicitSolver {
   virtual std::vector<double> solve(const Domain& domain, const PointSet& points,
                                     const std::vector<double>* warm_start = nullptr) = 0;
   virtual const SolverStats& stats() const = 0;
+  // The next solve frees the domain's triangulation once it has located the
+  // samples (Domain::release_triangulation): a solve's system and multigrid
+  // are the peak of a run's memory, and the triangulation comes back, rebuilt
+  // from the tets, when it is next needed.
+  void release_triangulation_in_next_solve() { release_triangulation_ = true; }
   // Poisson and SSD need oriented normals, spectral needs normals but not
   // their orientation; all three throw InputError without normals.
   virtual bool needs_normals() const = 0;
   virtual bool needs_oriented_normals() const = 0;
+
+ protected:
+  // Asked for by release_triangulation_in_next_solve; the next solve takes it.
+  bool take_release_triangulation() { return std::exchange(release_triangulation_, false); }
+
+ private:
+  bool release_triangulation_ = false;
 };
 
 std::unique_ptr<ImplicitSolver> make_solver(const SolverOptions& options);

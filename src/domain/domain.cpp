@@ -34,12 +34,20 @@ Domain& Domain::operator=(Domain&&) noexcept = default;
 Domain::~Domain() = default;
 
 Domain::Domain(const Domain& other) : impl_(std::make_unique<Impl>()) {
-  impl_->dt = other.impl_->dt;
-  impl_->f = other.impl_->f;
-  impl_->flags = other.impl_->flags;
-  impl_->center = other.impl_->center;
-  impl_->radius = other.impl_->radius;
-  impl_->reindex();
+  const Impl& o = *other.impl_;
+  if (o.released.load()) {  // a copy of the arrays, released too
+    impl_->mesh = o.mesh;
+    impl_->neighbors = o.neighbors;
+    impl_->released_vertex_cells = o.released_vertex_cells;
+    impl_->released.store(true);
+  } else {
+    impl_->dt = o.dt;
+    impl_->reindex();
+  }
+  impl_->f = o.f;
+  impl_->flags = o.flags;
+  impl_->center = o.center;
+  impl_->radius = o.radius;
 }
 
 Domain& Domain::operator=(const Domain& other) {
@@ -69,15 +77,18 @@ Vec3 Domain::center() const { return impl_->center; }
 double Domain::radius() const { return impl_->radius; }
 
 Location Domain::locate(const Vec3& p) const {
+  impl_->restore();
   return Impl::location(impl_->finite_cell_containing(p), p);
 }
 
 Location Domain::locate(const Vec3& p, int near_vertex) const {
+  impl_->restore();
   return Impl::location(impl_->finite_cell_containing(p, impl_->handles.at(near_vertex)->cell()),
                         p);
 }
 
 double Domain::interpolate(const Vec3& p, const std::vector<double>& values) const {
+  impl_->restore();
   const auto c = impl_->finite_cell_containing(p);
   if (c == Delaunay::Cell_handle())
     throw std::out_of_range("Domain::interpolate: point outside the domain");
@@ -95,6 +106,7 @@ double Domain::interpolate(const Location& at, const std::vector<double>& values
 
 std::vector<int> Domain::insert(const std::vector<Vec3>& points, std::uint8_t flags) {
   Impl& d = *impl_;
+  d.restore();
   // In spatial order (CGAL's Hilbert sort): each point is located from the
   // last one, and the new vertices are numbered along the curve, so that
   // neighbours have near indices (the solvers' sparse products read the
@@ -147,6 +159,7 @@ std::vector<int> Domain::insert(const std::vector<Vec3>& points, std::uint8_t fl
 
 Domain Domain::moved(const std::vector<Vec3>& new_positions) const {
   const Impl& d = *impl_;
+  d.restore();
   const std::size_t n = num_vertices();
   if (new_positions.size() != n)
     throw std::invalid_argument("Domain::move_vertices: one position per vertex is required");
@@ -192,12 +205,21 @@ Domain Domain::moved(const std::vector<Vec3>& new_positions, std::vector<double>
   return out;
 }
 
+void Domain::release_triangulation() const { impl_->release(); }
+
+bool Domain::triangulation_released() const { return impl_->released.load(); }
+
 void Domain::move_vertices(const std::vector<Vec3>& new_positions) {
   *this = moved(new_positions);
 }
 
 void Domain::translate(const Vec3& offset) {
   Impl& d = *impl_;
+  if (d.released.load()) {  // restore() builds the triangulation at the moved vertices
+    for (Vec3& p : d.mesh.vertices) p += offset;
+    d.center += offset;
+    return;
+  }
   for (auto v = d.dt.finite_vertices_begin(); v != d.dt.finite_vertices_end(); ++v) {
     const Vec3 p = to_vec(v->point()) + offset;
     v->set_point(to_point(p));

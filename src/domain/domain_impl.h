@@ -10,6 +10,10 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <atomic>
+#include <map>
+#include <mutex>
+#include <stdexcept>
 #include <vector>
 
 namespace pdd {
@@ -19,15 +23,128 @@ using detail::to_point;
 using detail::to_vec;
 
 struct Domain::Impl {
-  Delaunay dt;
-  std::vector<Delaunay::Vertex_handle> handles;  // dense index -> vertex
-  std::vector<Delaunay::Cell_handle> cells;      // tet index -> cell
+  // The triangulation and its handles are a cache of the dense arrays below:
+  // Domain::release_triangulation frees them, restore() rebuilds them.
+  mutable Delaunay dt;
+  mutable std::vector<Delaunay::Vertex_handle> handles;  // dense index -> vertex
+  mutable std::vector<Delaunay::Cell_handle> cells;      // tet index -> cell
   TetMesh mesh;  // the dense arrays: vertex i's position, tet t's corners
   std::vector<std::array<int, 4>> neighbors;
   std::vector<double> f;
   std::vector<std::uint8_t> flags;
   Vec3 center = Vec3::Zero();
   double radius = 0;
+  mutable std::atomic<bool> released{false};
+  mutable std::mutex restoring;
+  // While released: the cell each vertex (the infinite one last) pointed to,
+  // where point location starts its walks (a finite tet's index, or -2 - (4 t
+  // + i) for the infinite cell across face i of tet t).
+  mutable std::vector<int> released_vertex_cells;
+
+  // Frees the triangulation (about 500 bytes per vertex), keeping the arrays.
+  void release() const {
+    std::lock_guard<std::mutex> lock(restoring);
+    if (released.load()) return;
+    if (dt.dimension() == 3) {
+      auto encode = [&](Delaunay::Cell_handle c) {
+        if (!dt.is_infinite(c)) return c->info();
+        const Delaunay::Cell_handle finite = c->neighbor(c->index(dt.infinite_vertex()));
+        return -2 - (4 * finite->info() + finite->index(c));
+      };
+      released_vertex_cells.resize(handles.size() + 1);
+      for (std::size_t i = 0; i < handles.size(); ++i)
+        released_vertex_cells[i] = encode(handles[i]->cell());
+      released_vertex_cells.back() = encode(dt.infinite_vertex()->cell());
+    }
+    Delaunay().swap(dt);
+    std::vector<Delaunay::Vertex_handle>().swap(handles);
+    std::vector<Delaunay::Cell_handle>().swap(cells);
+    released.store(true);
+  }
+
+  // Rebuilds a released triangulation from the arrays, with no predicate: a
+  // cell per tet (its corners in the same order, its info the tet's index),
+  // and across each hull face an infinite cell, as CGAL orients them. The
+  // arrays keep their order. Safe to call from concurrent readers.
+  void restore() const {
+    if (!released.load(std::memory_order_acquire)) return;
+    std::lock_guard<std::mutex> lock(restoring);
+    if (!released.load(std::memory_order_relaxed)) return;
+    const std::vector<std::array<int, 4>>& tets = mesh.tets;
+    if (tets.empty()) {  // fewer than three dimensions: no cells to keep
+      std::vector<std::pair<detail::Point, int>> items;
+      for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+        items.emplace_back(to_point(mesh.vertices[i]), static_cast<int>(i));
+      dt.insert(items.begin(), items.end());
+      handles.assign(mesh.vertices.size(), Delaunay::Vertex_handle());
+      for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+        handles[v->info()] = v;
+      released.store(false, std::memory_order_release);
+      return;
+    }
+    detail::Tds& tds = dt.tds();
+    tds.clear();
+    const Delaunay::Vertex_handle infinite = tds.create_vertex();
+    dt.set_infinite_vertex(infinite);
+    tds.set_dimension(3);
+    handles.resize(mesh.vertices.size());
+    for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+      handles[i] = tds.create_vertex();
+      handles[i]->set_point(to_point(mesh.vertices[i]));
+      handles[i]->info() = static_cast<int>(i);
+    }
+    cells.resize(tets.size());
+    for (std::size_t t = 0; t < tets.size(); ++t) {
+      const auto& k = tets[t];
+      cells[t] = tds.create_cell(handles[k[0]], handles[k[1]], handles[k[2]], handles[k[3]]);
+      cells[t]->info() = static_cast<int>(t);
+    }
+    // An infinite cell is its finite neighbour with the infinite vertex in
+    // place of the far corner and two corners swapped (opposite orientation);
+    // infinite cells meet across the faces through a hull edge and infinity.
+    std::map<std::pair<int, int>, std::pair<Delaunay::Cell_handle, int>> open_edges;
+    for (std::size_t t = 0; t < tets.size(); ++t)
+      for (int i = 0; i < 4; ++i) {
+        const int across = neighbors[t][i];
+        if (across >= 0) {
+          cells[t]->set_neighbor(i, cells[across]);
+          continue;
+        }
+        std::array<Delaunay::Vertex_handle, 4> v{handles[tets[t][0]], handles[tets[t][1]],
+                                                 handles[tets[t][2]], handles[tets[t][3]]};
+        v[i] = infinite;
+        std::swap(v[(i + 1) % 4], v[(i + 2) % 4]);
+        const Delaunay::Cell_handle c = tds.create_cell(v[0], v[1], v[2], v[3]);
+        c->info() = -1;
+        c->set_neighbor(i, cells[t]);
+        cells[t]->set_neighbor(i, c);
+        for (int m = 0; m < 4; ++m) {
+          if (m == i) continue;
+          int a = -1, b = -1;
+          for (int e = 0; e < 4; ++e)
+            if (e != i && e != m) (a < 0 ? a : b) = v[e]->info();
+          const auto key = std::minmax(a, b);
+          const auto found = open_edges.find(key);
+          if (found == open_edges.end()) {
+            open_edges.emplace(key, std::make_pair(c, m));
+          } else {
+            c->set_neighbor(m, found->second.first);
+            found->second.first->set_neighbor(found->second.second, c);
+            open_edges.erase(found);
+          }
+        }
+      }
+    if (!open_edges.empty())
+      throw std::logic_error("Domain: the hull of the tets is not closed: no triangulation");
+    auto decode = [&](int code) {
+      return code >= 0 ? cells[code] : cells[(-2 - code) / 4]->neighbor((-2 - code) % 4);
+    };
+    for (std::size_t i = 0; i < handles.size(); ++i)
+      handles[i]->set_cell(decode(released_vertex_cells[i]));
+    infinite->set_cell(decode(released_vertex_cells.back()));
+    std::vector<int>().swap(released_vertex_cells);
+    released.store(false, std::memory_order_release);
+  }
 
   // Rebuilds the dense arrays from the triangulation (vertex infos are the
   // dense indices and must be 0..n-1).

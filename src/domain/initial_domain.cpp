@@ -139,6 +139,7 @@ Domain Domain::initial(const PointSet& input, const DomainOptions& options,
 RefinementReport Domain::delaunay_refine(double radius_edge_bound, int max_points,
                                          double max_circumradius) {
   Impl& d = *impl_;
+  d.restore();
   RefinementReport stats;
   std::priority_queue<BadCell> queue;
   long order = 0;

@@ -272,6 +272,9 @@ class Run {
     report("solve", iteration, domain);
     auto t = Clock::now();
     const std::vector<double> warm = domain.f();
+    // The solve's system and multigrid are the run's peak of memory; the
+    // triangulation is rebuilt from the tets when the optimizer next needs it.
+    solver_->release_triangulation_in_next_solve();
     domain.set_f(solver_->solve(domain, points_, &warm));
     stats.seconds_solve = seconds_since(t);
     stats.solver = solver_->stats();

@@ -28,7 +28,8 @@ class PoissonSolver final : public ImplicitSolver {
     const auto start = Clock::now();
     stats_ = SolverStats();
     const Problem p = make_problem(domain, points, "Poisson solver",
-                                   "the Poisson solver needs oriented normals (Eq. 13)");
+                                   "the Poisson solver needs oriented normals (Eq. 13)",
+                                   take_release_triangulation());
     const NearestNeighbors tree(points.points);  // the samples' one tree for the three below
     const double sigma = options_.kernel_size > 0
                              ? options_.kernel_size

@@ -12,7 +12,7 @@
 namespace pdd::detail {
 
 Problem make_problem(const Domain& domain, const PointSet& points, const std::string& solver,
-                     const std::string& why_normals) {
+                     const std::string& why_normals, bool release_triangulation) {
   if (points.size() == 0) throw InputError(solver + ": the point set is empty");
   require_normals(points, solver, why_normals);
   if (points.normals.size() != points.points.size())
@@ -24,6 +24,7 @@ Problem make_problem(const Domain& domain, const PointSet& points, const std::st
   } catch (const InputError& e) {
     throw InputError(solver + ": " + e.what());
   }
+  if (release_triangulation) domain.release_triangulation();
   poll();
   sampling_matrix(p.mesh, p.locations).swap(p.Phi);  // Eigen 3.4's SparseMatrix: = would copy
   poll();

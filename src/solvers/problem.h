@@ -37,9 +37,10 @@ struct Problem {
 };
 
 // Validates the inputs (at least one sample; normals, when required, one per
-// point: InputError naming `solver` otherwise) and locates the samples.
+// point: InputError naming `solver` otherwise) and locates the samples, then
+// frees the domain's triangulation if asked (the solve needs only the tets).
 Problem make_problem(const Domain& domain, const PointSet& points, const std::string& solver,
-                     const std::string& why_normals);
+                     const std::string& why_normals, bool release_triangulation = false);
 
 // The median of the values of f at the samples (Phi f).
 double median_at_samples(const SparseMatrix& Phi, const Eigen::VectorXd& f);

@@ -70,7 +70,8 @@ class SpectralSolver final : public ImplicitSolver {
     stats_ = SolverStats();
     const Problem p =
         make_problem(domain, points, "spectral solver",
-                     "the spectral solver needs normals, oriented or not (Eq. 16)");
+                     "the spectral solver needs normals, oriented or not (Eq. 16)",
+                     take_release_triangulation());
     const double nx = static_cast<double>(p.num_points);
     const std::size_t nt = p.mesh.tets.size();
 

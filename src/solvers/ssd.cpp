@@ -83,7 +83,8 @@ class SsdSolver final : public ImplicitSolver {
                             const std::vector<double>* warm_start) override {
     const auto start = Clock::now();
     stats_ = SolverStats();
-    Problem p = make_problem(domain, points, "SSD solver", kWhyNormals);
+    Problem p = make_problem(domain, points, "SSD solver", kWhyNormals,
+                             take_release_triangulation());
     const SsdOptions options = resolved(options_, p, points);
     const LinearSystem system = ssd_system(p, options);
     p.release_samples();
