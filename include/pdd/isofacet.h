@@ -28,4 +28,9 @@ struct Isofacet {
 std::vector<Isofacet> isofacets(const TetMesh& mesh, const std::vector<double>& f,
                                 double isovalue = 0.0);
 
+// The isofacet of tet t alone: false (and `out` untouched) when f does not
+// change sign over it.
+bool isofacet(const TetMesh& mesh, const std::vector<double>& f, int t, Isofacet& out,
+              double isovalue = 0.0);
+
 }  // namespace pdd

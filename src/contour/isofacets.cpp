@@ -27,9 +27,10 @@ bool crosses(const TetMesh& mesh, const std::vector<double>& f, double isovalue,
   return negative > 0 && negative < 4;
 }
 
-// The isofacet of tet t, if f changes sign over it.
-bool isofacet(const TetMesh& mesh, const std::vector<double>& f, double isovalue, int t,
-              Isofacet& a) {
+}  // namespace
+
+bool isofacet(const TetMesh& mesh, const std::vector<double>& f, int t, Isofacet& a,
+              double isovalue) {
   const auto& tet = mesh.tets[t];
   int neg[4], pos[4], nn = 0, np = 0;
   for (int i = 0; i < 4; ++i) (f[tet[i]] < isovalue ? neg[nn++] : pos[np++]) = tet[i];
@@ -72,8 +73,6 @@ bool isofacet(const TetMesh& mesh, const std::vector<double>& f, double isovalue
   return true;
 }
 
-}  // namespace
-
 std::vector<Isofacet> isofacets(const TetMesh& mesh, const std::vector<double>& f,
                                 double isovalue) {
   // Blocks of tets in parallel, each writing its facets after those of the
@@ -98,7 +97,7 @@ std::vector<Isofacet> isofacets(const TetMesh& mesh, const std::vector<double>& 
       [&](int k) {
         std::size_t next = offset[k];
         for (int t = k * kBlock; t < std::min(m, (k + 1) * kBlock); ++t)
-          if (crosses(mesh, f, isovalue, t)) isofacet(mesh, f, isovalue, t, out[next++]);
+          if (crosses(mesh, f, isovalue, t)) isofacet(mesh, f, t, out[next++], isovalue);
       },
       4);
   return out;

@@ -54,10 +54,9 @@ Eigen::Matrix3d best_rotation(const Eigen::Matrix3d& C) {
   return v1 * u1.transpose() + v2 * u2.transpose() + v1.cross(v2) * u1.cross(u2).transpose();
 }
 
-// The corners c(t) + S* v_{t'_i} - c(t) = S* v_{t'_i} of Eq. (7), i.e. the
-// target of each centered corner, for a tet whose smoothed volume is
-// `smoothed_volume`.
-std::array<Vec3, 4> asap_targets(const std::array<Vec3, 4>& v, double smoothed_volume) {
+// S* of Eq. (7) for a tet whose smoothed volume is `smoothed_volume`: the
+// target of its centered corner i, c(t) + S* v_{t'_i} - c(t), is S* v_{t'_i}.
+Eigen::Matrix3d asap_similarity(const std::array<Vec3, 4>& v, double smoothed_volume) {
   const auto& ref = reference_tet();
   const Vec3 center = 0.25 * (v[0] + v[1] + v[2] + v[3]);
   // Eq. (3): C = t' (t - c(t))^T, summed over the corners.
@@ -65,10 +64,7 @@ std::array<Vec3, 4> asap_targets(const std::array<Vec3, 4>& v, double smoothed_v
   for (int i = 0; i < 4; ++i) C += ref[i] * (v[i] - center).transpose();
   // Eq. (5): Sigma' = cbrt(vol_bar(t) / vol(t')) I_3.
   const double scale = std::cbrt(std::max(smoothed_volume, 0.0) / kReferenceVolume);
-  const Eigen::Matrix3d S = scale * best_rotation(C);
-  std::array<Vec3, 4> targets;
-  for (int i = 0; i < 4; ++i) targets[i] = S * ref[i];
-  return targets;
+  return scale * best_rotation(C);
 }
 
 }  // namespace
@@ -86,8 +82,9 @@ void add_asap_term(const Domain& domain, double weight_scale, QuadraticAccumulat
   detail::polled_parallel_for(m, [&](std::size_t t) { volume[t] = signed_volume(corners(t)); });
 
   // vol_bar(t): the mean of the volumes of t and of the tets adjacent to it.
-  // new[] leaves them unzeroed (a vector would zero a GB serially at 1M points).
-  const std::unique_ptr<std::array<Vec3, 4>[]> targets(new std::array<Vec3, 4>[m]);
+  // Each tet keeps S* (72 bytes; its four targets took 96, the peak of a 1M
+  // run). new[] leaves them unzeroed (a vector would zero a GB serially).
+  const std::unique_ptr<Eigen::Matrix3d[]> similarity(new Eigen::Matrix3d[m]);
   detail::polled_parallel_for(m, [&](std::size_t t) {
     double sum = volume[t];
     int count = 1;
@@ -96,26 +93,27 @@ void add_asap_term(const Domain& domain, double weight_scale, QuadraticAccumulat
         sum += volume[nb];
         ++count;
       }
-    targets[t] = asap_targets(corners(t), sum / count);
+    similarity[t] = asap_similarity(corners(t), sum / count);
   });
 
   // w_a(t) E_a(t) with E_a(t) = sum_i |(v_i - c(t)) - S* v_{t'_i}|^2 (Eq. (7)):
   // per coordinate, x^T P x - 2 q^T x + |q|^2 with P = I_4 - 1/4 (the
   // centering, P q = q since the targets are centered). Zero-volume tets
-  // have zero weight.
-  std::vector<double> weight(m);
+  // have zero weight. The volumes become the weights in place.
+  std::vector<double>& weight = volume;
   for (std::size_t t = 0; t < m; ++t) weight[t] = weight_scale * std::abs(volume[t]);
+  const auto& ref = reference_tet();
   const detail::VertexStars& stars = q.stars();
   q.add_isotropic_by_columns([&](int j, auto add) {
     for (int s = stars.begin(j); s < stars.end(j); ++s) {
       const int t = stars.tets[s];
       const int jl = detail::local_index(tets[t], j);
       for (int i = 0; i < 4; ++i) add(tets[t][i], weight[t] * ((i == jl) - 0.25));
-      q.b.segment<3>(3 * j) += weight[t] * targets[t][jl];
+      q.b.segment<3>(3 * j) += weight[t] * (similarity[t] * ref[jl]);
     }
   });
   for (std::size_t t = 0; t < m; ++t) {
-    for (int i = 0; i < 4; ++i) q.c += weight[t] * targets[t][i].squaredNorm();
+    for (int i = 0; i < 4; ++i) q.c += weight[t] * (similarity[t] * ref[i]).squaredNorm();
     detail::poll_every(t);
   }
 }
