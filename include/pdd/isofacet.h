@@ -28,6 +28,11 @@ struct Isofacet {
 std::vector<Isofacet> isofacets(const TetMesh& mesh, const std::vector<double>& f,
                                 double isovalue = 0.0);
 
+// Whether f changes sign over tet t (a value equal to the isovalue counts as
+// positive): whether tet t has an isofacet.
+bool crosses_isovalue(const TetMesh& mesh, const std::vector<double>& f, int t,
+                      double isovalue = 0.0);
+
 // The isofacet of tet t alone: false (and `out` untouched) when f does not
 // change sign over it.
 bool isofacet(const TetMesh& mesh, const std::vector<double>& f, int t, Isofacet& out,

@@ -20,14 +20,13 @@ Vec3 tet_gradient(const std::array<Vec3, 4>& v, const std::array<double, 4>& f) 
   return E.partialPivLu().solve(Vec3(f[1] - f[0], f[2] - f[0], f[3] - f[0]));
 }
 
-// Whether f changes sign over tet t (a value equal to the isovalue counts as positive).
-bool crosses(const TetMesh& mesh, const std::vector<double>& f, double isovalue, int t) {
+}  // namespace
+
+bool crosses_isovalue(const TetMesh& mesh, const std::vector<double>& f, int t, double isovalue) {
   int negative = 0;
   for (int v : mesh.tets[t]) negative += f[v] < isovalue;
   return negative > 0 && negative < 4;
 }
-
-}  // namespace
 
 bool isofacet(const TetMesh& mesh, const std::vector<double>& f, int t, Isofacet& a,
               double isovalue) {
@@ -87,7 +86,7 @@ std::vector<Isofacet> isofacets(const TetMesh& mesh, const std::vector<double>& 
       blocks,
       [&](int k) {
         for (int t = k * kBlock; t < std::min(m, (k + 1) * kBlock); ++t)
-          offset[k + 1] += crosses(mesh, f, isovalue, t);
+          offset[k + 1] += crosses_isovalue(mesh, f, t, isovalue);
       },
       4);
   for (int k = 0; k < blocks; ++k) offset[k + 1] += offset[k];
@@ -97,7 +96,7 @@ std::vector<Isofacet> isofacets(const TetMesh& mesh, const std::vector<double>& 
       [&](int k) {
         std::size_t next = offset[k];
         for (int t = k * kBlock; t < std::min(m, (k + 1) * kBlock); ++t)
-          if (crosses(mesh, f, isovalue, t)) isofacet(mesh, f, t, out[next++], isovalue);
+          if (crosses_isovalue(mesh, f, t, isovalue)) isofacet(mesh, f, t, out[next++], isovalue);
       },
       4);
   return out;

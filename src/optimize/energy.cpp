@@ -1,4 +1,5 @@
 // E(T), Eq. (1), frozen for one round: a quadratic in the 3|V| coordinates.
+#include <pdd/isofacet.h>
 #include <pdd/optimize.h>
 
 #include "common/cancellation.h"
@@ -39,11 +40,8 @@ BlockEnergy block_energy(const Domain& domain, const OptimizerOptions& options) 
   energy.fixed = boundary_vertices(domain, options.boundary_band * energy.diameter);
   detail::poll();  // the run's cancellation, between the steps
 
-  for (const auto& t : domain.tets()) {
-    int negative = 0;
-    for (int v : t) negative += domain.f()[v] < 0;
-    energy.crossing_tets += negative > 0 && negative < 4;
-  }
+  for (std::size_t t = 0; t < domain.num_tets(); ++t)
+    energy.crossing_tets += crosses_isovalue(domain.mesh(), domain.f(), static_cast<int>(t));
 
   // Lengths are measured in units of r(T), so that E is dimensionless and
   // the minimizer invariant to rigid motion and uniform scaling: w_a =

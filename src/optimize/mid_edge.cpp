@@ -32,9 +32,7 @@ void add_mid_edge_term(const Domain& domain, double weight_scale, QuadraticAccum
   const std::vector<double>& f = domain.f();
   std::vector<int> facet_of_tet(domain.num_tets(), -1);
   detail::polled_parallel_for(facet_of_tet.size(), [&](std::size_t t) {
-    int negative = 0;
-    for (int v : mesh.tets[t]) negative += f[v] < 0;
-    if (negative > 0 && negative < 4) facet_of_tet[t] = 0;
+    if (crosses_isovalue(mesh, f, static_cast<int>(t))) facet_of_tet[t] = 0;
   });
   int count = 0;
   for (int& k : facet_of_tet)
