@@ -85,6 +85,7 @@ SparseMatrix subset_prolongation(const std::vector<Vec3>& vertices, const std::v
       CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::First_of_pair_property_map<Item>>;
   CGAL::spatial_sort(queries.begin(), queries.end(), Traits());
   const std::size_t chunks = (queries.size() + kChunk - 1) / kChunk;
+  std::vector<char> outside(queries.size(), 0);
   polled_parallel_for(
       chunks,
       [&](std::size_t k) {
@@ -95,8 +96,7 @@ SparseMatrix subset_prolongation(const std::vector<Vec3>& vertices, const std::v
           int li, lj;
           const Delaunay::Cell_handle c = dt.locate(point, lt, li, lj, hint);
           if (lt == Delaunay::OUTSIDE_CONVEX_HULL || dt.is_infinite(c)) {
-            columns[r][0] = dt.nearest_vertex(point, c)->info();
-            weights[r][0] = 1;
+            outside[q] = 1;
             continue;
           }
           hint = c;
@@ -108,6 +108,19 @@ SparseMatrix subset_prolongation(const std::vector<Vec3>& vertices, const std::v
         }
       },
       std::size_t(64));
+  // The few outside the hull, one after the other: CGAL's nearest_vertex
+  // walks the vertices' neighbours by marking cells, which concurrent calls
+  // would share (the result then followed the threads' timing).
+  Delaunay::Cell_handle hint;
+  for (std::size_t q = 0; q < queries.size(); ++q) {
+    if (!outside[q]) continue;
+    const auto& [point, r] = queries[q];
+    Delaunay::Locate_type lt;
+    int li, lj;
+    hint = dt.locate(point, lt, li, lj, hint);
+    columns[r][0] = dt.nearest_vertex(point, hint)->info();
+    weights[r][0] = 1;
+  }
 
   // Assembled by rows, then stored by columns.
   Eigen::SparseMatrix<double, Eigen::RowMajor> rows(static_cast<Eigen::Index>(n),
