@@ -222,6 +222,16 @@ TEST_F(FemTest, GalerkinProductMatchesEigensProduct) {
     for (int p = mine.outerIndexPtr()[j] + 1; p < mine.outerIndexPtr()[j + 1]; ++p)
       ASSERT_LT(mine.innerIndexPtr()[p - 1], mine.innerIndexPtr()[p]);
 
+  // From A's lower triangle alone: the same pattern, the same values but
+  // for the order of the sums.
+  const SparseMatrix lower = A.triangularView<Eigen::Lower>();
+  const SparseMatrix from_lower = galerkin_product(P, lower, Stored::kLower);
+  ASSERT_EQ(from_lower.nonZeros(), mine.nonZeros());
+  for (Eigen::Index k = 0; k < mine.nonZeros(); ++k) {
+    ASSERT_EQ(from_lower.innerIndexPtr()[k], mine.innerIndexPtr()[k]);
+    ASSERT_NEAR(from_lower.valuePtr()[k], mine.valuePtr()[k], 1e-13 * eigen.norm());
+  }
+
   // In single precision (the multigrid's coarse levels): from A in double,
   // each entry is the double product's rounded once; from A in single, within
   // float's rounding of it. The same pattern.
@@ -258,6 +268,18 @@ TEST_F(FemTest, HessianEnergyIsHTransposeMassInverseH) {
   Eigen::VectorXd q(mass.size());
   for (Eigen::Index v = 0; v < q.size(); ++v) q[v] = mesh.vertices[v].squaredNorm();
   EXPECT_GT(q.dot(energy * q), 0.0);
+}
+
+TEST_F(FemTest, HessianEnergysLowerTriangleIsTheSameEntries) {
+  const SparseMatrix all = hessian_energy(mesh);
+  const SparseMatrix lower = hessian_energy(mesh, Stored::kLower);
+  const SparseMatrix expected = all.triangularView<Eigen::Lower>();
+  ASSERT_EQ(lower.nonZeros(), expected.nonZeros());
+  ASSERT_EQ(2 * lower.nonZeros() - lower.rows(), all.nonZeros());
+  for (Eigen::Index k = 0; k < lower.nonZeros(); ++k) {
+    ASSERT_EQ(lower.innerIndexPtr()[k], expected.innerIndexPtr()[k]);
+    ASSERT_EQ(lower.valuePtr()[k], expected.valuePtr()[k]);
+  }
 }
 
 // hessian_energy assembles H a slice of columns at a time (32768): on a mesh

@@ -17,6 +17,7 @@
 #include "support/shapes.h"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <cmath>
 #include <functional>
@@ -291,6 +292,27 @@ TEST_P(OrientedSolver, MultigridAgreesWithCholmodAndUsesTheWarmStart) {
   std::cout << name() << " multigrid: " << cold << " iterations cold, " << mg->stats().iterations
             << " warm\n";
   EXPECT_LT(mg->stats().iterations, cold / 4);
+}
+
+TEST_P(OrientedSolver, MultigridDoesNotDependOnTheNumberOfThreads) {
+  // SSD's matrix is kept as its lower triangle, whose products scatter: in
+  // fixed parts, the same bits on one thread and on two. (The prolongations
+  // once followed the threads' timing: concurrent CGAL nearest_vertex calls.)
+  const PointSet samples = test::sample_sphere(2000);
+  const Domain domain = shell_domain(samples, sphere_distance(), 0.07);
+  ASSERT_GT(domain.num_vertices(), 4096u);  // several parts of the products
+  SolverOptions o = options_for(GetParam());
+  o.linear.direct_below = 0;
+  o.linear.coarsest_size = 200;
+  std::vector<double> f[2];
+  for (int threads : {1, 2}) {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, threads);
+    auto solver = make_solver(o);
+    f[threads - 1] = solver->solve(domain, samples);
+    EXPECT_EQ(solver->stats().method, "cg+multigrid");
+  }
+  ASSERT_EQ(f[0].size(), f[1].size());
+  for (std::size_t i = 0; i < f[0].size(); ++i) ASSERT_EQ(f[0][i], f[1][i]) << "vertex " << i;
 }
 
 INSTANTIATE_TEST_SUITE_P(Solvers, OrientedSolver,

@@ -74,13 +74,18 @@ SparseMatrix weighted_stiffness(const TetMesh& mesh, const std::vector<double>& 
 // not zero: the weak form's boundary term is not dropped (Eq. (11) as printed).
 SparseMatrix hessian_matrix(const TetMesh& mesh);
 
+// Which entries of a symmetric matrix are stored: all, or the lower triangle
+// alone (rows >= column in each column: half the memory; Eigen reads it with
+// selfadjointView<Eigen::Lower>()).
+enum class Stored { kAll, kLower };
+
 // The integrated squared Hessian of Eq. (15): H^T M~_V^-1 H (|V| x |V|,
 // two-ring sparsity), M~_V the vertex masses repeated for the 9 rows of each
 // vertex. Equals gram_matrix(hessian_matrix(mesh), 1 / masses repeated 9
 // times) but is computed from each vertex's dense 9 x |ring| block of H:
 // 0.9 s on one thread for 30k vertices, H's assembly included, against
 // 1.5 s for Eigen's product H^T H alone and 2.6 s for gram_matrix.
-SparseMatrix hessian_energy(const TetMesh& mesh);
+SparseMatrix hessian_energy(const TetMesh& mesh, Stored stored = Stored::kAll);
 
 // A^T diag(d) A for any sparse A (d.size() == A.rows()), e.g. the
 // bi-Laplacian L M_V^-1 L or Phi^T Phi. Computed column by column in
@@ -89,11 +94,13 @@ SparseMatrix hessian_energy(const TetMesh& mesh);
 SparseMatrix gram_matrix(const SparseMatrix& A, const Eigen::VectorXd& d);
 
 // The Galerkin product P^T A P (P: n x m, A: n x n symmetric, all entries
-// stored), column by column in parallel and deterministic: the coarse
-// operators of the multigrid solver. A and the result in double or single
-// precision (Out = float: the multigrid's coarse levels); the sums in double.
+// stored or its lower triangle alone), column by column in parallel and
+// deterministic: the coarse operators of the multigrid solver, all entries
+// stored. A and the result in double or single precision (Out = float: the
+// multigrid's coarse levels); the sums in double.
 template <class Out = double, class Scalar = double>
-Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::SparseMatrix<Scalar>& A);
+Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::SparseMatrix<Scalar>& A,
+                                          Stored stored = Stored::kAll);
 
 // A B, column by column in parallel and deterministic.
 SparseMatrix sparse_product(const SparseMatrix& A, const SparseMatrix& B);

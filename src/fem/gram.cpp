@@ -204,18 +204,42 @@ SparseMatrix sparse_product(const SparseMatrix& A, const SparseMatrix& B) {
 }
 
 template <class Out, class Scalar>
-Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::SparseMatrix<Scalar>& A) {
+Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::SparseMatrix<Scalar>& A,
+                                          Stored stored) {
   if (A.rows() != A.cols() || P.rows() != A.rows())
     throw std::invalid_argument("galerkin_product: P must have as many rows as A");
   if (!A.isCompressed()) {
     Eigen::SparseMatrix<Scalar> compressed = A;
     compressed.makeCompressed();
-    return galerkin_product<Out>(P, compressed);
+    return galerkin_product<Out>(P, compressed, stored);
   }
   const Columns p(P);
   const int* a_outer = A.outerIndexPtr();
   const int* a_inner = A.innerIndexPtr();
   const Scalar* a_value = A.valuePtr();
+  // A lower triangle gives column k of A below the diagonal; the entries
+  // above it are row k of the triangle, indexed here (column and position of
+  // each entry, by rows; 8 bytes per entry while the product runs).
+  struct RowEntry {
+    int column, position;
+  };
+  std::vector<long long> row_start;
+  std::vector<RowEntry> row_entries;
+  if (stored == Stored::kLower) {
+    const int n = static_cast<int>(A.rows());
+    row_start.assign(static_cast<std::size_t>(n) + 1, 0);
+    for (int k = 0; k < n; ++k)
+      for (int q = a_outer[k]; q < a_outer[k + 1]; ++q)
+        if (a_inner[q] > k) ++row_start[static_cast<std::size_t>(a_inner[q]) + 1];
+    for (int i = 0; i < n; ++i) row_start[i + 1] += row_start[i];
+    detail::poll();
+    row_entries.resize(static_cast<std::size_t>(row_start[n]));
+    std::vector<long long> cursor(row_start.begin(), row_start.end() - 1);
+    for (int k = 0; k < n; ++k)  // by columns: each row's entries in increasing column
+      for (int q = a_outer[k]; q < a_outer[k + 1]; ++q)
+        if (a_inner[q] > k) row_entries[static_cast<std::size_t>(cursor[a_inner[q]]++)] = {k, q};
+    detail::poll();
+  }
   const Columns r(P, Columns::Transposed{});  // column i of r is row i of P
   // Column j = P^T (A p_j): A p_j summed first, on its few hundred fine rows,
   // then each fine row's sum mapped through its row of P. Mapping every term
@@ -242,18 +266,24 @@ Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::Sp
       f.call = 0;
     }
     const int call = ++f.call;  // the pattern's pass and the values' reach each column
-    for (int pk = p.outer[j]; pk < p.outer[j + 1]; ++pk)
-      for (int ai = a_outer[p.inner[pk]]; ai < a_outer[p.inner[pk] + 1]; ++ai) {
-        const int i = a_inner[ai];
-        const double x = p.value[pk] * static_cast<double>(a_value[ai]);
-        if (f.marker[i] != call) {
-          f.marker[i] = call;
-          f.sum[i] = x;
-          f.touched.push_back(i);
-        } else {
-          f.sum[i] += x;
-        }
+    auto add = [&](int i, double x) {
+      if (f.marker[i] != call) {
+        f.marker[i] = call;
+        f.sum[i] = x;
+        f.touched.push_back(i);
+      } else {
+        f.sum[i] += x;
       }
+    };
+    for (int pk = p.outer[j]; pk < p.outer[j + 1]; ++pk) {
+      const int k = p.inner[pk];
+      const double w = p.value[pk];
+      if (!row_start.empty())
+        for (long long e = row_start[k]; e < row_start[k + 1]; ++e)
+          add(row_entries[e].column, w * static_cast<double>(a_value[row_entries[e].position]));
+      for (int ai = a_outer[k]; ai < a_outer[k + 1]; ++ai)
+        add(a_inner[ai], w * static_cast<double>(a_value[ai]));
+    }
     return f;
   };
   const int m = static_cast<int>(P.cols());
@@ -271,15 +301,17 @@ Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::Sp
       },
       nullptr, [](const int*, const int*) {});
 }
-template SparseMatrix galerkin_product<double, double>(const SparseMatrix&, const SparseMatrix&);
+template SparseMatrix galerkin_product<double, double>(const SparseMatrix&, const SparseMatrix&,
+                                                       Stored);
 template SparseMatrix galerkin_product<double, float>(const SparseMatrix&,
-                                                      const Eigen::SparseMatrix<float>&);
+                                                      const Eigen::SparseMatrix<float>&, Stored);
 template Eigen::SparseMatrix<float> galerkin_product<float, double>(const SparseMatrix&,
-                                                                    const SparseMatrix&);
+                                                                    const SparseMatrix&, Stored);
 template Eigen::SparseMatrix<float> galerkin_product<float, float>(
-    const SparseMatrix&, const Eigen::SparseMatrix<float>&);
+    const SparseMatrix&, const Eigen::SparseMatrix<float>&, Stored);
 
-SparseMatrix hessian_energy(const TetMesh& mesh) {
+SparseMatrix hessian_energy(const TetMesh& mesh, Stored stored) {
+  const bool lower = stored == Stored::kLower;
   // Column j = sum over v in the ring of j of (1 / m_v) H_v^T (H_v)_{:, j},
   // H_v the 9 x |ring(v)| block of the rows of v. Row (v, ab) of H is read off
   // column v: (H_v)_{ab, k} = sum_t vol_t d_b(phi_v) d_a(phi_k) = (H_k)_{ba, v}.
@@ -344,7 +376,8 @@ SparseMatrix hessian_energy(const TetMesh& mesh) {
       n, n,
       [&](int j, auto&& visit) {
         for (int v : rings[j])
-          for (int k : rings[v]) visit(k);
+          for (int k : rings[v])
+            if (!lower || k >= j) visit(k);
       },
       [&](int j, auto&& add) {
         const double* hj = h.data() + h_start[slot_of[j]];  // (H_v)_{ab, j} at 3a + b
@@ -352,7 +385,12 @@ SparseMatrix hessian_energy(const TetMesh& mesh) {
           const double w = inverse_mass[v];
           const std::vector<int>& ring = rings[v];
           const double* hv = h.data() + h_start[slot_of[v]];
-          for (std::size_t q = 0; q < ring.size(); ++q) {
+          // A ring is sorted: with `lower`, its rows >= j only.
+          const std::size_t first =
+              lower ? static_cast<std::size_t>(std::lower_bound(ring.begin(), ring.end(), j) -
+                                               ring.begin())
+                    : 0;
+          for (std::size_t q = first; q < ring.size(); ++q) {
             const double* hk = hv + 9 * q;  // (H_v)_{ab, k} at 3b + a, k = ring[q]
             double x = 0;
             for (int a = 0; a < 3; ++a)

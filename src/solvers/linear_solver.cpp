@@ -25,11 +25,12 @@ using Cholmod = Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>;
 // Galerkin correction of a warm start x in span{x, 1}: the previous iterate
 // typically differs from the solution by a scale and a constant (a median
 // shift, another solver's normalization), the smoothest modes.
-void correct_warm_start(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+void correct_warm_start(const SymmetricProduct<double>& A, const Eigen::VectorXd& b,
+                        Eigen::VectorXd& x) {
   const Eigen::VectorXd ones = Eigen::VectorXd::Ones(b.size());
   Eigen::VectorXd Ax, A1;
-  symmetric_product(A, x, Ax);
-  symmetric_product(A, ones, A1);
+  A(x, Ax);
+  A(ones, A1);
   Eigen::Matrix2d K;
   K << deterministic_dot(x, Ax), deterministic_dot(x, A1), deterministic_dot(ones, Ax),
       deterministic_dot(ones, A1);
@@ -42,7 +43,7 @@ void correct_warm_start(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::
 
 struct LinearSolver::Impl {
   LinearSolverOptions options;
-  const SparseMatrix* A = nullptr;  // the caller's, see compute()
+  SymmetricProduct<double> A;  // with the caller's matrix, see compute()
   bool direct = false;
   Cholmod cholmod;
   ProgressiveHierarchy hierarchy;
@@ -82,12 +83,13 @@ LinearSolver::~LinearSolver() = default;
 LinearSolver::LinearSolver(LinearSolver&&) noexcept = default;
 LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
 
-void LinearSolver::compute(const SparseMatrix& A, const std::vector<Vec3>& vertices) {
+void LinearSolver::compute(const SparseMatrix& A, const std::vector<Vec3>& vertices,
+                           Stored stored) {
   const auto start = Clock::now();
   Impl& d = *impl_;
   if (static_cast<std::size_t>(A.rows()) != vertices.size())
     throw std::invalid_argument("LinearSolver: one unknown per vertex is required");
-  d.A = &A;
+  d.A = SymmetricProduct<double>(A, stored == Stored::kLower);
   d.direct = d.options.method == LinearMethod::kCholmod ||
              vertices.size() < d.options.direct_below;
   if (d.direct) {
@@ -101,7 +103,7 @@ void LinearSolver::compute(const SparseMatrix& A, const std::vector<Vec3>& verti
     mg.smoothing_degree = d.options.smoothing_degree;
     mg.coarsest_size = d.options.coarsest_size;
     mg.block_coupling = d.options.block_coupling;
-    d.multigrid.setup(A, d.hierarchy.levels_for(vertices), mg);
+    d.multigrid.setup(A, d.hierarchy.levels_for(vertices), mg, stored);
     levels_ = static_cast<int>(d.multigrid.num_levels());
   }
   // The hierarchy remembers every domain, solved directly or not.
@@ -124,10 +126,10 @@ void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   } else {
     const bool warm = x.size() == b.size() && x.allFinite() && x.squaredNorm() > 0;
     if (warm)
-      correct_warm_start(*d.A, b, x);
+      correct_warm_start(d.A, b, x);
     else
       x.setZero(b.size());
-    const CgResult cg = multigrid_cg(*d.A, d.multigrid, b, x, d.options.cg_tolerance,
+    const CgResult cg = multigrid_cg(d.A, d.multigrid, b, x, d.options.cg_tolerance,
                                      d.options.cg_max_iterations);
     iterations_ = cg.iterations;
     residual_ = cg.residual;  // recomputed from x by multigrid_cg
@@ -138,7 +140,7 @@ void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   }
   if (d.direct) {
     Eigen::VectorXd Ax;
-    symmetric_product(*d.A, x, Ax);
+    d.A(x, Ax);
     residual_ = (Ax - b).norm() / b_norm;
   }
   if (!x.allFinite()) fail("linear solve produced non-finite values", residual_);
@@ -154,7 +156,7 @@ void LinearSolver::precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) co
 
 void LinearSolver::release() {
   impl_->multigrid.clear();
-  impl_->A = nullptr;
+  impl_->A = SymmetricProduct<double>();
 }
 
 void LinearSolver::report(SolverStats& stats) const {

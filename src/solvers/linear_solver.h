@@ -22,14 +22,15 @@ class LinearSolver {
   LinearSolver(LinearSolver&&) noexcept;
   LinearSolver& operator=(LinearSolver&&) noexcept;
 
-  // Prepares solves with the SPD matrix A (all entries stored) of the
-  // domain whose vertices are `vertices` (one unknown per vertex): the
+  // Prepares solves with the SPD matrix A (all entries stored, or its lower
+  // triangle) of the domain whose vertices are `vertices` (one unknown per vertex): the
   // multigrid hierarchy and its Galerkin operators, or CHOLMOD's factor. A is
   // not copied: it must stay alive and unchanged until the last solve() with
   // it. Successive calls on domains each refined from the last use the
   // earlier ones as coarse levels. Throws SolverError when A is not positive
   // definite numerically.
-  void compute(const SparseMatrix& A, const std::vector<Vec3>& vertices);
+  void compute(const SparseMatrix& A, const std::vector<Vec3>& vertices,
+               Stored stored = Stored::kAll);
 
   // Solves A x = b. On entry x is a warm start for CG (empty or zero means
   // none); CHOLMOD ignores it. Throws SolverError, naming the relative

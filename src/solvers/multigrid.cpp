@@ -27,9 +27,9 @@ SparseMatrix compressed_transpose(const SparseMatrix& M) {
 // The largest eigenvalue of D^-1 A (A symmetric positive definite, D the
 // smoother's block diagonal) from `steps` Lanczos steps on D^-1/2 A D^-1/2,
 // from a fixed start.
-template <class Scalar>
-double largest_eigenvalue(const Eigen::SparseMatrix<Scalar>& A, const BlockJacobi& D, int steps) {
-  const Eigen::Index n = A.rows();
+template <class Product>
+double largest_eigenvalue(Eigen::Index n, const Product& multiply, const BlockJacobi& D,
+                          int steps) {
   steps = static_cast<int>(std::min<Eigen::Index>(steps, n));
   Eigen::VectorXd v(n), previous = Eigen::VectorXd::Zero(n), w(n), scaled(n), scaled_product(n);
   for (Eigen::Index i = 0; i < n; ++i) v[i] = 1.0 + 0.5 * std::sin(1.7 * static_cast<double>(i));
@@ -38,7 +38,7 @@ double largest_eigenvalue(const Eigen::SparseMatrix<Scalar>& A, const BlockJacob
   double b = 0;
   for (int k = 0; k < steps; ++k) {
     D.apply_inverse_sqrt(v, scaled);
-    symmetric_product(A, scaled, scaled_product);
+    multiply(scaled, scaled_product);
     D.apply_inverse_sqrt(scaled_product, w);
     const double a = deterministic_dot(w, v);
     alpha.push_back(a);
@@ -70,6 +70,7 @@ struct Multigrid::Impl {
     // level (factored by CHOLMOD): it only enters the V-cycle, whose
     // products sum in double.
     const SparseMatrix* A = nullptr;  // level 0 and the coarsest
+    SymmetricProduct<double> times_A;  // with *A (level 0's may hold its lower triangle)
     SparseMatrix coarsest;
     Eigen::SparseMatrix<float> single;  // the others
     const SparseMatrix* P = nullptr;    // to this level from the next coarser one
@@ -81,12 +82,12 @@ struct Multigrid::Impl {
 
     void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
       if (A)
-        symmetric_product(*A, x, y);
+        times_A(x, y);
       else
         symmetric_product(single, x, y);
     }
     Eigen::Index size() const { return A ? A->rows() : single.rows(); }
-    Eigen::Index nonzeros() const { return A ? A->nonZeros() : single.nonZeros(); }
+    Eigen::Index nonzeros() const { return A ? times_A.nonzeros() : single.nonZeros(); }
   };
   MultigridOptions options;
   std::vector<Level> levels;
@@ -162,19 +163,25 @@ Multigrid::Multigrid(Multigrid&&) noexcept = default;
 Multigrid& Multigrid::operator=(Multigrid&&) noexcept = default;
 
 void Multigrid::setup(const SparseMatrix& A, const std::vector<SparseMatrix>& prolongations,
-                      const MultigridOptions& options) {
+                      const MultigridOptions& options, Stored stored) {
   Impl& d = *impl_;
   d.options = options;
   d.levels.clear();
   d.levels.reserve(prolongations.size() + 1);
   d.levels.resize(1);
   d.levels[0].A = &A;
-  // The smoother's blocks and bound of each level but the coarsest.
+  d.levels[0].times_A = SymmetricProduct<double>(A, stored == Stored::kLower);
+  // The smoother's blocks and bound of each level but the coarsest (a lower
+  // triangle gives BlockJacobi all it reads: the entries below the diagonal).
   auto finish = [&](Impl::Level& l, const auto& matrix) {
     l.smoother = BlockJacobi(matrix, options.block_coupling, options.max_block);
     poll();
     // Lanczos' estimate lies below the true value: a margin of 10 %.
-    l.largest = 1.1 * largest_eigenvalue(matrix, l.smoother, 12);
+    l.largest = 1.1 * largest_eigenvalue(
+                          l.size(), [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+                            l.multiply(x, y);
+                          },
+                          l.smoother, 12);
     poll();
   };
   auto coarsest = [&](std::size_t k, Eigen::Index size) {
@@ -191,12 +198,16 @@ void Multigrid::setup(const SparseMatrix& A, const std::vector<SparseMatrix>& pr
     Impl::Level& coarse = d.levels.emplace_back();
     coarse.P = &P;
     compressed_transpose(P).swap(coarse.R);
+    // Only the finest level may be a triangle; the coarse ones are stored whole.
+    const Stored fine_stored = k == 0 ? stored : Stored::kAll;
     if (coarsest(k + 1, P.cols())) {
-      (fine.A ? galerkin_product(P, *fine.A) : galerkin_product(P, fine.single))
+      (fine.A ? galerkin_product(P, *fine.A, fine_stored) : galerkin_product(P, fine.single))
           .swap(coarse.coarsest);
       coarse.A = &coarse.coarsest;
+      coarse.times_A = SymmetricProduct<double>(coarse.coarsest, false);
     } else {
-      (fine.A ? galerkin_product<float>(P, *fine.A) : galerkin_product<float>(P, fine.single))
+      (fine.A ? galerkin_product<float>(P, *fine.A, fine_stored)
+              : galerkin_product<float>(P, fine.single))
           .swap(coarse.single);
       finish(coarse, coarse.single);
     }
@@ -229,8 +240,9 @@ std::size_t Multigrid::level_nonzeros(std::size_t level) const {
   return static_cast<std::size_t>(impl_->levels.at(level).nonzeros());
 }
 
-CgResult multigrid_cg(const SparseMatrix& A, const Multigrid& M, const Eigen::VectorXd& b,
-                      Eigen::VectorXd& x, double tolerance, int max_iterations) {
+CgResult multigrid_cg(const SymmetricProduct<double>& A, const Multigrid& M,
+                      const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance,
+                      int max_iterations) {
   CgResult result;
   const Eigen::Index n = b.size();
   const double b_norm = std::sqrt(deterministic_dot(b, b));
@@ -241,16 +253,16 @@ CgResult multigrid_cg(const SparseMatrix& A, const Multigrid& M, const Eigen::Ve
     return result;
   }
   Eigen::VectorXd r(n), q(n);
-  symmetric_product(A, x, q);
+  A(x, q);
   r = b - q;
   const PcgResult cg = preconditioned_cg(
-      [&](const Eigen::VectorXd& p, Eigen::VectorXd& Ap) { symmetric_product(A, p, Ap); },
+      [&](const Eigen::VectorXd& p, Eigen::VectorXd& Ap) { A(p, Ap); },
       [&](const Eigen::VectorXd& residual, Eigen::VectorXd& z) { M.precondition(residual, z); },
       r, x, tolerance, b_norm, max_iterations);
   result.iterations = cg.iterations;
   result.converged = cg.converged;
   // The recursive residual drifts from the true one over many iterations.
-  symmetric_product(A, x, q);
+  A(x, q);
   result.residual = std::sqrt(deterministic_dot(b - q, b - q)) / b_norm;
   if (result.converged && result.residual > 10 * tolerance) result.converged = false;
   return result;

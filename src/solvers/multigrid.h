@@ -13,6 +13,8 @@
 
 #include <pdd/fem.h>
 
+#include "common/parallel_kernels.h"
+
 #include <Eigen/Core>
 
 #include <memory>
@@ -36,12 +38,13 @@ class Multigrid {
   Multigrid(Multigrid&&) noexcept;
   Multigrid& operator=(Multigrid&&) noexcept;
 
-  // The hierarchy for A: prolongations[l] maps level l + 1 to level l
-  // (level 0 is A's, prolongations[l].rows() = size of level l). A and the
-  // prolongations must outlive the solves. Throws SolverError when the
-  // coarsest level is not positive definite.
+  // The hierarchy for A (all entries stored, or its lower triangle):
+  // prolongations[l] maps level l + 1 to level l (level 0 is A's,
+  // prolongations[l].rows() = size of level l). A and the prolongations must
+  // outlive the solves. Throws SolverError when the coarsest level is not
+  // positive definite.
   void setup(const SparseMatrix& A, const std::vector<SparseMatrix>& prolongations,
-             const MultigridOptions& options = {});
+             const MultigridOptions& options = {}, Stored stored = Stored::kAll);
 
   // z = M^-1 r, one V-cycle from zero: symmetric positive definite in r.
   void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
@@ -66,7 +69,7 @@ struct CgResult {
 
 // Preconditioned conjugate gradients from x (a warm start, or zero when x
 // is empty) until |A x - b| <= tolerance |b| or max_iterations.
-CgResult multigrid_cg(const SparseMatrix& A, const Multigrid& preconditioner,
+CgResult multigrid_cg(const SymmetricProduct<double>& A, const Multigrid& preconditioner,
                       const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance,
                       int max_iterations);
 

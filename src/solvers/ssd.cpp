@@ -21,8 +21,10 @@ SsdOptions resolved(SsdOptions options, const Problem& p, const PointSet& points
   return options;
 }
 
-// The system A f = b of Eq. (15) for a located problem.
-LinearSystem ssd_system(const Problem& p, const SsdOptions& options) {
+// The system A f = b of Eq. (15) for a located problem, A whole or its lower
+// triangle (the solver's: half the memory of the solve's largest matrix).
+LinearSystem ssd_system(const Problem& p, const SsdOptions& options, Stored stored) {
+  const bool lower = stored == Stored::kLower;
   const double nx = static_cast<double>(p.num_points);
   const std::size_t nt = p.mesh.tets.size();
   const double beta = options.beta / nx;
@@ -34,7 +36,7 @@ LinearSystem ssd_system(const Problem& p, const SsdOptions& options) {
   // the solve's peak of memory); the one-ring terms are then added into it.
   SparseMatrix A;
   if (options.gamma > 0) {
-    hessian_energy(p.mesh).swap(A);  // Eigen 3.4's SparseMatrix has no move: = would copy
+    hessian_energy(p.mesh, stored).swap(A);  // Eigen 3.4's SparseMatrix has no move: = would copy
     poll();
     A *= options.gamma * p.length * p.length / tet_volumes(p.mesh).sum();  // H^T M~_V^-1 H
     poll();
@@ -58,12 +60,14 @@ LinearSystem ssd_system(const Problem& p, const SsdOptions& options) {
     const SparseMatrix stiffness = weighted_stiffness(p.mesh, count);
     poll();
     if (options.gamma > 0)
-      add_to(A, stiffness, beta);
+      add_to(A, stiffness, beta, lower);
+    else if (lower)
+      A = beta * SparseMatrix(stiffness.triangularView<Eigen::Lower>());
     else
       A = beta * stiffness;
     poll();
   }
-  add_to(A, gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows())), alpha);
+  add_to(A, gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows())), alpha, lower);
   LinearSystem system;
   system.A.swap(A);
   system.b = std::move(b);
@@ -86,13 +90,13 @@ class SsdSolver final : public ImplicitSolver {
     Problem p = make_problem(domain, points, "SSD solver", kWhyNormals,
                              take_release_triangulation());
     const SsdOptions options = resolved(options_, p, points);
-    const LinearSystem system = ssd_system(p, options);
+    const LinearSystem system = ssd_system(p, options, Stored::kLower);
     p.release_samples();
     const SparseMatrix& A = system.A;
     const Eigen::VectorXd& b = system.b;
     stats_.assembly_seconds = seconds_since(start);
 
-    linear_.compute(A, p.mesh.vertices);
+    linear_.compute(A, p.mesh.vertices, Stored::kLower);
     const auto solve_start = Clock::now();
     Eigen::VectorXd f = warm_start_vector(warm_start, p.mesh.vertices.size());
     linear_.solve(b, f);
@@ -102,7 +106,7 @@ class SsdSolver final : public ImplicitSolver {
     linear_.release();
     stats_.num_vertices = p.mesh.vertices.size();
     stats_.num_points = p.num_points;
-    stats_.nonzeros = static_cast<std::size_t>(A.nonZeros());
+    stats_.nonzeros = static_cast<std::size_t>(2 * A.nonZeros() - A.rows());  // both triangles
     stats_.value_weight = options.alpha;
     return to_std(f);
   }
@@ -125,7 +129,7 @@ namespace pdd {
 
 LinearSystem ssd_system(const Domain& domain, const PointSet& points, const SsdOptions& options) {
   const detail::Problem p = detail::make_problem(domain, points, "SSD system", detail::kWhyNormals);
-  return detail::ssd_system(p, detail::resolved(options, p, points));
+  return detail::ssd_system(p, detail::resolved(options, p, points), Stored::kAll);
 }
 
 }  // namespace pdd
