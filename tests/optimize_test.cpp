@@ -222,6 +222,26 @@ TEST(DampingTerm, KeepsBoundaryVerticesFixedToMachinePrecision) {
   EXPECT_EQ(hull_vertices(domain), hull_vertices(Domain(before)));
 }
 
+TEST(Optimizer, ARoundOnAReleasedTriangulationMovesTheSame) {
+  // A round frees the triangulation while it builds and minimizes E(T), and
+  // the old one before it builds the new: from a live or a released domain,
+  // the same vertices, tets and values, and a live triangulation after.
+  Domain live = shell_domain();
+  live.set_f(sphere_function(live));
+  Domain released = live;
+  released.release_triangulation();
+  ASSERT_TRUE(released.triangulation_released());
+  const OptimizerReport a = optimize_domain(live);
+  const OptimizerReport b = optimize_domain(released);
+  EXPECT_GT(a.max_displacement, 1e-4);
+  EXPECT_EQ(a.max_displacement, b.max_displacement);
+  EXPECT_EQ(live.vertices(), released.vertices());
+  EXPECT_EQ(live.tets(), released.tets());
+  EXPECT_EQ(live.f(), released.f());
+  EXPECT_FALSE(released.triangulation_released());
+  EXPECT_GE(released.locate(Vec3(0, 0, 0)).tet, 0);
+}
+
 TEST(DomainEnergy, QuadraticIsSymmetricPositiveSemiDefiniteOnEdgeBlocks) {
   Domain domain = shell_domain();
   domain.set_f(sphere_function(domain));

@@ -74,14 +74,23 @@ std::vector<bool> boundary_vertices(const Domain& domain, double band) {
   // The hull, convex, holds the ball about an inner point c whose radius is
   // the distance from c to the nearest face plane: a vertex deeper than
   // `band` inside that ball needs no query (nearly all of them).
+  // c is inside when it lies on the side of every face plane where the hull
+  // vertices' centroid lies (read off the arrays: the triangulation may be
+  // released). Where rounding could tip a side, c is within rounding of a
+  // face, inner is about 0 and every vertex is queried: either way is right.
   const Vec3 c = domain.center();
-  double inner = 0;
-  if (domain.locate(c).tet >= 0) {
-    inner = std::numeric_limits<double>::infinity();
-    for (const auto& f : faces) {
-      const Vec3 normal = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]);
-      inner = std::min(inner, std::abs(normal.dot(c - x[f[0]])) / normal.norm());
+  Vec3 centroid = Vec3::Zero();
+  for (const auto& f : faces) centroid += (x[f[0]] + x[f[1]] + x[f[2]]) / 3.0;
+  centroid /= static_cast<double>(faces.size());
+  double inner = std::numeric_limits<double>::infinity();
+  for (const auto& f : faces) {
+    const Vec3 normal = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]);
+    const double side = normal.dot(c - x[f[0]]);
+    if (side * normal.dot(centroid - x[f[0]]) < 0) {
+      inner = 0;
+      break;
     }
+    inner = std::min(inner, std::abs(side) / normal.norm());
   }
   std::vector<char> near(n, 0);  // written concurrently: no std::vector<bool>
   const double band2 = band * band;

@@ -182,6 +182,10 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
   if (domain.num_tets() == 0) return report;
   // E(T) is freed before the new domain is built (the round's peak of
   // memory), and built again, the same, if a collapsed tet sends moves back.
+  // E(T) and its minimization read only the domain's arrays: its
+  // triangulation is freed meanwhile, and restored for the guard's point
+  // location.
+  domain.release_triangulation();
   auto build_energy = [&] {
     return std::make_unique<optimize_detail::BlockEnergy>(
         optimize_detail::block_energy(domain, options));
@@ -255,7 +259,11 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
     if (std::find(moving.begin(), moving.end(), 1) == moving.end()) break;
     detail::poll();
     energy.reset();
-    Domain moved = domain.moved(positions, carried_values(domain, moving, located));
+    std::vector<double> carried = carried_values(domain, moving, located);
+    // The old triangulation is not needed to build the new one: freed first
+    // (the round's peak of memory), restored only if moves are sent back.
+    domain.release_triangulation();
+    Domain moved = domain.moved(positions, std::move(carried));
     detail::poll();
     if (send_back(collapsed_vertices(moved, moving))) continue;
     for (Eigen::Index v = 0; v < n; ++v)
