@@ -103,7 +103,7 @@ void LinearSolver::compute(const SparseMatrix& A, const std::vector<Vec3>& verti
     mg.smoothing_degree = d.options.smoothing_degree;
     mg.coarsest_size = d.options.coarsest_size;
     mg.block_coupling = d.options.block_coupling;
-    d.multigrid.setup(A, d.hierarchy.levels_for(vertices), mg, stored);
+    d.multigrid.setup(d.A, d.hierarchy.levels_for(vertices), mg);
     levels_ = static_cast<int>(d.multigrid.num_levels());
   }
   // The hierarchy remembers every domain, solved directly or not.

@@ -70,7 +70,7 @@ struct Multigrid::Impl {
     // level (factored by CHOLMOD): it only enters the V-cycle, whose
     // products sum in double.
     const SparseMatrix* A = nullptr;  // level 0 and the coarsest
-    SymmetricProduct<double> times_A;  // with *A (level 0's may hold its lower triangle)
+    const SymmetricProduct<double>* times_A = nullptr;  // level 0's: the caller's
     SparseMatrix coarsest;
     Eigen::SparseMatrix<float> single;  // the others
     const SparseMatrix* P = nullptr;    // to this level from the next coarser one
@@ -81,13 +81,17 @@ struct Multigrid::Impl {
     mutable Eigen::VectorXd residual, correction, direction, product, scaled, coarse_rhs, coarse_x;
 
     void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-      if (A)
-        times_A(x, y);
+      if (times_A)
+        (*times_A)(x, y);
+      else if (A)  // the coarsest (solved by CHOLMOD, not smoothed): whole
+        symmetric_product(*A, x, y);
       else
         symmetric_product(single, x, y);
     }
     Eigen::Index size() const { return A ? A->rows() : single.rows(); }
-    Eigen::Index nonzeros() const { return A ? times_A.nonzeros() : single.nonZeros(); }
+    Eigen::Index nonzeros() const {
+      return times_A ? times_A->nonzeros() : A ? A->nonZeros() : single.nonZeros();
+    }
   };
   MultigridOptions options;
   std::vector<Level> levels;
@@ -162,15 +166,18 @@ Multigrid::~Multigrid() = default;
 Multigrid::Multigrid(Multigrid&&) noexcept = default;
 Multigrid& Multigrid::operator=(Multigrid&&) noexcept = default;
 
-void Multigrid::setup(const SparseMatrix& A, const std::vector<SparseMatrix>& prolongations,
-                      const MultigridOptions& options, Stored stored) {
+void Multigrid::setup(const SymmetricProduct<double>& times_A,
+                      const std::vector<SparseMatrix>& prolongations,
+                      const MultigridOptions& options) {
+  const SparseMatrix& A = times_A.matrix();
+  const Stored stored = times_A.lower() ? Stored::kLower : Stored::kAll;
   Impl& d = *impl_;
   d.options = options;
   d.levels.clear();
   d.levels.reserve(prolongations.size() + 1);
   d.levels.resize(1);
   d.levels[0].A = &A;
-  d.levels[0].times_A = SymmetricProduct<double>(A, stored == Stored::kLower);
+  d.levels[0].times_A = &times_A;
   // The smoother's blocks and bound of each level but the coarsest (a lower
   // triangle gives BlockJacobi all it reads: the entries below the diagonal).
   auto finish = [&](Impl::Level& l, const auto& matrix) {
@@ -204,7 +211,6 @@ void Multigrid::setup(const SparseMatrix& A, const std::vector<SparseMatrix>& pr
       (fine.A ? galerkin_product(P, *fine.A, fine_stored) : galerkin_product(P, fine.single))
           .swap(coarse.coarsest);
       coarse.A = &coarse.coarsest;
-      coarse.times_A = SymmetricProduct<double>(coarse.coarsest, false);
     } else {
       (fine.A ? galerkin_product<float>(P, *fine.A, fine_stored)
               : galerkin_product<float>(P, fine.single))

@@ -38,13 +38,14 @@ class Multigrid {
   Multigrid(Multigrid&&) noexcept;
   Multigrid& operator=(Multigrid&&) noexcept;
 
-  // The hierarchy for A (all entries stored, or its lower triangle):
+  // The hierarchy for A (all entries stored, or its lower triangle; its
+  // product's buffers are shared with the caller's, one product at a time):
   // prolongations[l] maps level l + 1 to level l (level 0 is A's,
   // prolongations[l].rows() = size of level l). A and the prolongations must
   // outlive the solves. Throws SolverError when the coarsest level is not
   // positive definite.
-  void setup(const SparseMatrix& A, const std::vector<SparseMatrix>& prolongations,
-             const MultigridOptions& options = {}, Stored stored = Stored::kAll);
+  void setup(const SymmetricProduct<double>& A, const std::vector<SparseMatrix>& prolongations,
+             const MultigridOptions& options = {});
 
   // z = M^-1 r, one V-cycle from zero: symmetric positive definite in r.
   void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
