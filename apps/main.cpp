@@ -18,6 +18,11 @@ int main(int argc, char** argv) {
   pdd::cli::start_signal_watcher(argv);
   mallopt(M_MMAP_THRESHOLD, 1 << 30);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  // One heap for all threads: what a worker frees (half of each concurrently
+  // built triangulation) is then reused by the next step on any thread, not
+  // held in the worker's own arena (building.ply's resident peak 1.00 -> 0.85
+  // GB at the same speed).
+  mallopt(M_ARENA_MAX, 1);
   CLI::App app{"pdd: closed triangle meshes from point clouds by progressive discrete domains\n"
                "(Zhao, Alliez, Boubekeur, Buse, Thiery, SGP 2021)"};
   app.set_version_flag("--version", std::string("pdd ") + PDD_VERSION);

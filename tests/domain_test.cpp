@@ -2,6 +2,7 @@
 #include <pdd/errors.h>
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <random>
@@ -25,6 +26,14 @@ std::vector<Vec3> random_points_in_ball(int n, double radius, unsigned seed) {
     if (p.norm() < radius) points.push_back(p);
   }
   return points;
+}
+
+// The tets as sets of corners, in sorted order: the same triangulation
+// whatever the tets' numbering.
+std::vector<std::array<int, 4>> sorted(std::vector<std::array<int, 4>> tets) {
+  for (auto& t : tets) std::sort(t.begin(), t.end());
+  std::sort(tets.begin(), tets.end());
+  return tets;
 }
 
 TEST(InitialDomain, MeetsRadiusEdgeBoundAndContainsInput) {
@@ -217,6 +226,52 @@ TEST(Domain, MoveVerticesCarriesFOverByInterpolation) {
   EXPECT_THROW(d.move_vertices(collapsed), std::invalid_argument);
 }
 
+// A move rebuilds the triangulation on all cores: the same Delaunay tets as a
+// triangulation built one point after the other, with consistent neighbours,
+// and the same arrays, bit for bit, on one thread and on two (on a lattice
+// too, where the tets are only defined by CGAL's symbolic perturbation).
+TEST(Domain, AMoveBuildsTheSameTetsAsASequentialTriangulationOnAnyThreads) {
+  std::vector<Vec3> lattice;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j)
+      for (int k = 0; k < 20; ++k) lattice.emplace_back(0.1 * i, 0.1 * j, 0.1 * k);
+  for (const std::vector<Vec3>& points : {random_points_in_ball(20000, 1.0, 21), lattice}) {
+    const Domain before(points);
+    std::vector<Vec3> positions = before.vertices();
+    if (points.size() != lattice.size())
+      for (std::size_t i = 0; i < positions.size(); i += 3) positions[i] *= 0.999;
+    auto moved_on = [&](int threads) {
+      tbb::global_control c(tbb::global_control::max_allowed_parallelism, threads);
+      return before.moved(positions);
+    };
+    const Domain one = moved_on(1), two = moved_on(2);
+    EXPECT_EQ(one.tets(), two.tets());
+    EXPECT_EQ(one.tet_neighbors(), two.tet_neighbors());
+    EXPECT_EQ(sorted(two.tets()), sorted(Domain(positions).tets()));
+    const auto& tets = two.tets();
+    const auto& nb = two.tet_neighbors();
+    const auto& x = two.vertices();
+    int hull_faces = 0;
+    for (std::size_t t = 0; t < tets.size(); ++t) {
+      EXPECT_GT(signed_volume(x[tets[t][0]], x[tets[t][1]], x[tets[t][2]], x[tets[t][3]]), 0);
+      for (int i = 0; i < 4; ++i) {
+        if (nb[t][i] < 0) {
+          ++hull_faces;
+          continue;
+        }
+        const auto& u = tets[nb[t][i]];
+        int shared = 0;
+        for (int k = 0; k < 4; ++k)
+          if (k != i) shared += std::count(u.begin(), u.end(), tets[t][k]);
+        EXPECT_EQ(shared, 3) << "tet " << t << " face " << i;
+      }
+    }
+    EXPECT_GT(hull_faces, 0);
+    // Point location restores the triangulation from the arrays.
+    EXPECT_GE(two.locate(x[0] * 0.5 + x[1] * 0.5).tet, 0);
+  }
+}
+
 TEST(Domain, CopyIsIndependent) {
   Domain a(random_points_in_ball(100, 1.0, 10));
   Domain b = a;
@@ -273,11 +328,6 @@ TEST(Domain, AReleasedTriangulationIsRestoredTheSame) {
     EXPECT_EQ(inserted.insert(extra), inserted_live.insert(extra));
     EXPECT_EQ(inserted.vertices(), inserted_live.vertices());
     EXPECT_EQ(inserted.f(), inserted_live.f());
-    auto sorted = [](std::vector<std::array<int, 4>> tets) {
-      for (auto& t : tets) std::sort(t.begin(), t.end());
-      std::sort(tets.begin(), tets.end());
-      return tets;
-    };
     EXPECT_EQ(sorted(inserted.tets()), sorted(inserted_live.tets()));
 
     // Translated while released, and copied: located where the vertices now are.

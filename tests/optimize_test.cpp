@@ -225,7 +225,8 @@ TEST(DampingTerm, KeepsBoundaryVerticesFixedToMachinePrecision) {
 TEST(Optimizer, ARoundOnAReleasedTriangulationMovesTheSame) {
   // A round frees the triangulation while it builds and minimizes E(T), and
   // the old one before it builds the new: from a live or a released domain,
-  // the same vertices, tets and values, and a live triangulation after.
+  // the same vertices, tets and values; the moved domain comes as its arrays,
+  // and point location restores its triangulation.
   Domain live = shell_domain();
   live.set_f(sphere_function(live));
   Domain released = live;
@@ -238,8 +239,10 @@ TEST(Optimizer, ARoundOnAReleasedTriangulationMovesTheSame) {
   EXPECT_EQ(live.vertices(), released.vertices());
   EXPECT_EQ(live.tets(), released.tets());
   EXPECT_EQ(live.f(), released.f());
-  EXPECT_FALSE(released.triangulation_released());
+  EXPECT_EQ(live.tet_neighbors(), released.tet_neighbors());
+  EXPECT_TRUE(released.triangulation_released());
   EXPECT_GE(released.locate(Vec3(0, 0, 0)).tet, 0);
+  EXPECT_FALSE(released.triangulation_released());
 }
 
 TEST(DomainEnergy, QuadraticIsSymmetricPositiveSemiDefiniteOnEdgeBlocks) {

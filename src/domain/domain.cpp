@@ -3,6 +3,7 @@
 #include <pdd/domain.h>
 
 #include "common/cancellation.h"
+#include "domain/concurrent_delaunay.h"
 #include "domain/domain_impl.h"
 
 #include <CGAL/Spatial_sort_traits_adapter_3.h>
@@ -183,25 +184,19 @@ Domain Domain::moved(const std::vector<Vec3>& new_positions, std::vector<double>
   Domain out;
   Impl& o = *out.impl_;
   o.f = std::move(f);
-  // CGAL's range insertion with info written out (the same spatial order,
-  // each point located from the last), so that the run's cancellation is
-  // polled in between.
-  std::vector<detail::Point> points;
-  points.reserve(n);
-  for (const Vec3& p : new_positions) points.push_back(to_point(p));
-  const std::vector<std::size_t> order = detail::spatial_order(points);
-  Delaunay::Vertex_handle hint;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (k % 4096 == 4095) detail::poll();
-    hint = o.dt.insert(points[order[k]], hint);
-    hint->info() = static_cast<int>(order[k]);
-  }
-  if (o.dt.number_of_vertices() != n)
+  // Built on all cores and handed over as the arrays, released: the next
+  // point location restores the triangulation from them (Impl::restore).
+  detail::DelaunayArrays built = detail::concurrent_delaunay(new_positions);
+  if (built.vertices != n)
     throw std::invalid_argument("Domain::move_vertices: two vertices would coincide");
+  o.mesh.vertices = new_positions;
+  o.mesh.tets = std::move(built.tets);
+  o.neighbors = std::move(built.neighbors);
+  o.released_vertex_cells = std::move(built.vertex_cells);
+  o.released.store(true);
   o.flags = d.flags;
   o.center = d.center;
   o.radius = d.radius;
-  o.reindex();
   return out;
 }
 
