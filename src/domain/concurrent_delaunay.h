@@ -4,6 +4,8 @@
 
 #include <pdd/types.h>
 
+#include "domain/triangulation.h"
+
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -26,5 +28,15 @@ struct DelaunayArrays {
 // index comes first and the tets sorted. Empty tets when the points span fewer
 // than three dimensions or when two coincide (`vertices` counts the distinct).
 DelaunayArrays concurrent_delaunay(const std::vector<Vec3>& points);
+
+// The inverse, with no predicate: `dt` (cleared) gets a cell per tet, in
+// order, with the tet's index as info and the corners in the same order, and
+// the infinite cells across the hull faces; vertex i has info i. `handles`
+// and `cells` map the indices to the handles.
+void triangulation_from_arrays(const TetMesh& mesh,
+                               const std::vector<std::array<int, 4>>& neighbors,
+                               const std::vector<int>& vertex_cells, Delaunay& dt,
+                               std::vector<Delaunay::Vertex_handle>& handles,
+                               std::vector<Delaunay::Cell_handle>& cells);
 
 }  // namespace pdd::detail

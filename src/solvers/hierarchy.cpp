@@ -1,6 +1,7 @@
 #include "solvers/hierarchy.h"
 
 #include "common/cancellation.h"
+#include "domain/concurrent_delaunay.h"
 #include "domain/triangulation.h"
 
 #include <CGAL/Spatial_sort_traits_adapter_3.h>
@@ -41,25 +42,21 @@ SparseMatrix subset_prolongation(const std::vector<Vec3>& vertices, const std::v
                                  const std::vector<int>& fine) {
   if (coarse.size() < 4 || coarse.size() > fine.size())
     throw std::invalid_argument("subset_prolongation: need 4 <= |coarse| <= |fine|");
-  using Item = std::pair<Point, int>;
-  std::vector<Item> items;
-  items.reserve(coarse.size());
-  for (std::size_t c = 0; c < coarse.size(); ++c)
-    items.emplace_back(to_point(vertices[coarse[c]]), static_cast<int>(c));
-  // CGAL's range insertion written out (the same spatial order, each point
-  // located from the last) so that the run's cancellation is polled in between.
-  CGAL::spatial_sort(
-      items.begin(), items.end(),
-      CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::First_of_pair_property_map<Item>>());
+  // The coarse vertices' triangulation, built on all cores (vertex c's info
+  // is c), for the fine vertices' point location.
   Delaunay dt;
-  Delaunay::Vertex_handle last;
-  for (std::size_t k = 0; k < items.size(); ++k) {
-    if (k % 4096 == 4095) poll();
-    last = dt.insert(items[k].first, last);
-    last->info() = items[k].second;
+  {
+    TetMesh coarse_mesh;
+    coarse_mesh.vertices.reserve(coarse.size());
+    for (int c : coarse) coarse_mesh.vertices.push_back(vertices[c]);
+    DelaunayArrays built = concurrent_delaunay(coarse_mesh.vertices);
+    if (built.vertices != coarse.size() || built.tets.empty())
+      throw std::invalid_argument("subset_prolongation: the coarse vertices are degenerate");
+    coarse_mesh.tets = std::move(built.tets);
+    std::vector<Delaunay::Vertex_handle> handles;
+    std::vector<Delaunay::Cell_handle> cells;
+    triangulation_from_arrays(coarse_mesh, built.neighbors, built.vertex_cells, dt, handles, cells);
   }
-  if (dt.dimension() < 3 || dt.number_of_vertices() != coarse.size())
-    throw std::invalid_argument("subset_prolongation: the coarse vertices are degenerate");
 
   // Row r of P: up to 4 columns and their weights.
   const std::size_t n = fine.size();
@@ -69,6 +66,7 @@ SparseMatrix subset_prolongation(const std::vector<Vec3>& vertices, const std::v
   // by chunk, each walk starting from the previous one's cell (a few steps
   // instead of a walk across the domain). The chunks do not depend on the
   // thread count.
+  using Item = std::pair<Point, int>;
   std::vector<Item> queries;
   queries.reserve(n - coarse.size());
   for (std::size_t r = 0, c = 0; r < n; ++r) {
