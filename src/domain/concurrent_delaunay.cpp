@@ -80,7 +80,7 @@ void build(const std::vector<Vec3>& points, DelaunayArrays& out) {
   ParallelDelaunay dt(&locks);
   // In slices of the input's order, so that the run's cancellation is polled
   // in between; CGAL sorts each slice spatially.
-  constexpr std::size_t kSlice = std::size_t(1) << 18;
+  constexpr std::size_t kSlice = std::size_t(1) << 20;
   for (std::size_t begin = 0; begin < n; begin += kSlice) {
     poll();
     dt.insert(items.begin() + begin, items.begin() + std::min(n, begin + kSlice));
@@ -125,12 +125,16 @@ void build(const std::vector<Vec3>& points, DelaunayArrays& out) {
     std::sort(order.begin() + start[v], order.begin() + start[v + 1],
               [&](int a, int b) { return corners[a] < corners[b]; });
   });
-  polled_parallel_for(T, [&](std::size_t r) { cells[order[r]]->info() = static_cast<int>(r); });
-
+  // Written out in the cells' own order (their memory in turn; the ranks and
+  // the arrays are what is reached at random).
+  std::vector<int> rank(T);
+  polled_parallel_for(T, [&](std::size_t r) { rank[order[r]] = static_cast<int>(r); });
+  std::vector<int>().swap(order);
+  polled_parallel_for(T, [&](std::size_t t) { cells[t]->info() = rank[t]; });
   out.tets.resize(T);
   out.neighbors.resize(T);
-  polled_parallel_for(T, [&](std::size_t r) {
-    const int t = order[r];
+  polled_parallel_for(T, [&](std::size_t t) {
+    const int r = rank[t];
     out.tets[r] = corners[t];
     for (int i = 0; i < 4; ++i)
       out.neighbors[r][i] = cells[t]->neighbor(kEven[rotation[t]][i])->info();
