@@ -307,7 +307,24 @@ TEST(Domain, AReleasedTriangulationIsRestoredTheSame) {
         EXPECT_EQ(a.barycentric, b.barycentric);
       }
     }
-    EXPECT_FALSE(d.triangulation_released());
+    // A released domain is located by a walk over its arrays: no
+    // triangulation rebuilt, the same tets. Points on the tets' corners and
+    // faces (ties) may land in another tet with them, but always in one that
+    // contains them; points beyond the hull are outside.
+    EXPECT_TRUE(d.triangulation_released());
+    const auto& x = d.vertices();
+    for (std::size_t v = 0; v < x.size(); v += 7) {
+      const Vec3 mid = 0.5 * (x[v] + x[(v * 13 + 5) % x.size()]);
+      for (const Vec3& p : {x[v], mid}) {
+        const Location a = d.locate(p, static_cast<int>(v)), b = live.locate(p);
+        ASSERT_EQ(a.tet >= 0, b.tet >= 0);
+        if (a.tet < 0) continue;
+        for (double w : a.barycentric) EXPECT_GE(w, -1e-12);
+        EXPECT_NEAR(d.interpolate(a, f), live.interpolate(b, f), 1e-12);
+      }
+    }
+    EXPECT_LT(d.locate(Vec3(0, 0, 2 * d.radius() + 5)).tet, 0);
+    EXPECT_TRUE(d.triangulation_released());
 
     std::mt19937 rng(12);
     std::uniform_real_distribution<double> jitter(-0.02, 0.02);

@@ -226,7 +226,7 @@ TEST(Optimizer, ARoundOnAReleasedTriangulationMovesTheSame) {
   // A round frees the triangulation while it builds and minimizes E(T), and
   // the old one before it builds the new: from a live or a released domain,
   // the same vertices, tets and values; the moved domain comes as its arrays,
-  // and point location restores its triangulation.
+  // located over them, and interpolation restores its triangulation.
   Domain live = shell_domain();
   live.set_f(sphere_function(live));
   Domain released = live;
@@ -242,6 +242,8 @@ TEST(Optimizer, ARoundOnAReleasedTriangulationMovesTheSame) {
   EXPECT_EQ(live.tet_neighbors(), released.tet_neighbors());
   EXPECT_TRUE(released.triangulation_released());
   EXPECT_GE(released.locate(Vec3(0, 0, 0)).tet, 0);
+  EXPECT_NEAR(released.interpolate(Vec3(0, 0, 0), released.f()),
+              live.interpolate(Vec3(0, 0, 0), live.f()), 1e-12);
   EXPECT_FALSE(released.triangulation_released());
 }
 

@@ -43,7 +43,7 @@ NearestNeighbors::NearestNeighbors(const std::vector<Vec3>& points)
   for (const Vec3& p : points) input.emplace_back(p.x(), p.y(), p.z());
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t{0});
-  CGAL::spatial_sort<CGAL::Sequential_tag>(
+  CGAL::spatial_sort<CGAL::Parallel_tag>(
       order.begin(), order.end(),
       CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::Pointer_property_map<Point>::const_type>(
           CGAL::make_property_map(static_cast<const std::vector<Point>&>(input))));

@@ -77,12 +77,18 @@ bool Domain::on_boundary_sphere(int vertex) const {
 Vec3 Domain::center() const { return impl_->center; }
 double Domain::radius() const { return impl_->radius; }
 
+// A released domain is walked over its arrays (no triangulation rebuilt);
+// a live one by CGAL's walk.
 Location Domain::locate(const Vec3& p) const {
+  if (impl_->released.load(std::memory_order_acquire) && !impl_->mesh.tets.empty())
+    return impl_->walk(p, 0);
   impl_->restore();
   return Impl::location(impl_->finite_cell_containing(p), p);
 }
 
 Location Domain::locate(const Vec3& p, int near_vertex) const {
+  if (impl_->released.load(std::memory_order_acquire) && !impl_->mesh.tets.empty())
+    return impl_->walk(p, impl_->start_tet(near_vertex));
   impl_->restore();
   return Impl::location(impl_->finite_cell_containing(p, impl_->handles.at(near_vertex)->cell()),
                         p);
@@ -118,7 +124,7 @@ std::vector<int> Domain::insert(const std::vector<Vec3>& points, std::uint8_t fl
   order.reserve(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
     order.emplace_back(to_point(points[i]), static_cast<int>(i));
-  CGAL::spatial_sort(
+  CGAL::spatial_sort<CGAL::Parallel_tag>(
       order.begin(), order.end(),
       CGAL::Spatial_sort_traits_adapter_3<detail::Kernel, CGAL::First_of_pair_property_map<Item>>());
   // Values are taken from the current interpolant before any insertion, so

@@ -80,8 +80,8 @@ struct Domain::Impl {
       released.store(false, std::memory_order_release);
       return;
     }
+    // released_vertex_cells stays: concurrent walks may still read it.
     detail::triangulation_from_arrays(mesh, neighbors, released_vertex_cells, dt, handles, cells);
-    std::vector<int>().swap(released_vertex_cells);
     released.store(false, std::memory_order_release);
   }
 
@@ -148,10 +148,8 @@ struct Domain::Impl {
     return c;
   }
 
-  // Barycentric coordinates of p in finite cell c.
-  static std::array<double, 4> barycentric(Delaunay::Cell_handle c, const Vec3& p) {
-    Vec3 q[4];
-    for (int i = 0; i < 4; ++i) q[i] = to_vec(c->vertex(i)->point());
+  // Barycentric coordinates of p in the tet q (positively oriented).
+  static std::array<double, 4> barycentric(const Vec3 (&q)[4], const Vec3& p) {
     auto volume = [](const Vec3& a, const Vec3& b, const Vec3& c2, const Vec3& d) {
       return (b - a).dot((c2 - a).cross(d - a));
     };
@@ -162,6 +160,21 @@ struct Domain::Impl {
     w[2] = volume(q[0], q[1], p, q[3]) / total;
     w[3] = 1.0 - w[0] - w[1] - w[2];
     return w;
+  }
+
+  // Barycentric coordinates of p in finite cell c.
+  static std::array<double, 4> barycentric(Delaunay::Cell_handle c, const Vec3& p) {
+    Vec3 q[4];
+    for (int i = 0; i < 4; ++i) q[i] = to_vec(c->vertex(i)->point());
+    return barycentric(q, p);
+  }
+
+  // While released: point location by a walk over the arrays from tet
+  // `start` (walk.cpp), and the tet a vertex's walks start from.
+  Location walk(const Vec3& p, int start) const;
+  int start_tet(int vertex) const {
+    const int code = released_vertex_cells.at(vertex);
+    return code >= 0 ? code : (-2 - code) / 4;
   }
 
   // The tet c (null: outside) and p's barycentric coordinates in it.

@@ -30,11 +30,12 @@ inline Point to_point(const Vec3& v) { return Point(v.x(), v.y(), v.z()); }
 inline Vec3 to_vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
 
 // The indices of `points` in CGAL's spatial (Hilbert, BRIO) order, the order
-// its range insertion uses: each point near the one before it.
+// its range insertion uses: each point near the one before it. Sorted on all
+// cores (the same order on any number: fixed splits, a fixed shuffle).
 inline std::vector<std::size_t> spatial_order(const std::vector<Point>& points) {
   std::vector<std::size_t> order(points.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  CGAL::spatial_sort<CGAL::Sequential_tag>(
+  CGAL::spatial_sort<CGAL::Parallel_tag>(
       order.begin(), order.end(),
       CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::Pointer_property_map<Point>::const_type>(
           CGAL::make_property_map(points)));

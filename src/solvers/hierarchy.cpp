@@ -81,7 +81,7 @@ SparseMatrix subset_prolongation(const std::vector<Vec3>& vertices, const std::v
   }
   using Traits =
       CGAL::Spatial_sort_traits_adapter_3<Kernel, CGAL::First_of_pair_property_map<Item>>;
-  CGAL::spatial_sort(queries.begin(), queries.end(), Traits());
+  CGAL::spatial_sort<CGAL::Parallel_tag>(queries.begin(), queries.end(), Traits());
   const std::size_t chunks = (queries.size() + kChunk - 1) / kChunk;
   std::vector<char> outside(queries.size(), 0);
   polled_parallel_for(
