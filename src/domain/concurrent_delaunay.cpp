@@ -11,11 +11,10 @@
 #include <tbb/parallel_for.h>
 #include <tbb/scalable_allocator.h>
 
-#include <memory>
-#include <type_traits>
-
 #include <algorithm>
 #include <cstdint>
+#include <memory>
+#include <type_traits>
 #include <utility>
 
 // CGAL's concurrent triangulation takes its cells and vertices from TBB's

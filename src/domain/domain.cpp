@@ -190,8 +190,9 @@ Domain Domain::moved(const std::vector<Vec3>& new_positions, std::vector<double>
   Domain out;
   Impl& o = *out.impl_;
   o.f = std::move(f);
-  // Built on all cores and handed over as the arrays, released: the next
-  // point location restores the triangulation from them (Impl::restore).
+  // Built on all cores and handed over as the arrays, released: points are
+  // located by walking them, and the triangulation is restored from them
+  // when an insertion or interpolation needs it (Impl::restore).
   detail::DelaunayArrays built = detail::concurrent_delaunay(new_positions);
   if (built.vertices != n)
     throw std::invalid_argument("Domain::move_vertices: two vertices would coincide");
