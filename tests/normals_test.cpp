@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "support/shapes.h"
 
@@ -61,6 +62,56 @@ TEST(Normals, OneJetFitSmoothsThePointsAndGivesTheirNormals) {
     EXPECT_LT(degrees_between_lines(fits.normals[i], fits.points[i]), 5.0) << i;
   }
   EXPECT_LT(after, 0.25 * before);  // RMS off the sphere at most half the noise's
+}
+
+// Points on the faces of the cube [-1, 1]^3, with the faces' normals.
+PointSet sample_cube(int n, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  PointSet cube;
+  for (int i = 0; i < n; ++i) {
+    const int face = i % 6, axis = face / 2;
+    Vec3 p(uniform(random), uniform(random), uniform(random));
+    p[axis] = face % 2 ? 1.0 : -1.0;
+    cube.points.push_back(p);
+    cube.normals.push_back(Vec3::Unit(axis) * p[axis]);
+  }
+  return cube;
+}
+
+// Jets round a cube's edges off over a neighbourhood's radius (about two
+// spacings); there the points take a neighbour's flat neighbourhood on their
+// own face, and away from the edges nothing changes.
+TEST(Normals, SharpenedNormalsKeepACubesEdges) {
+  const PointSet cube = sample_cube(12000, 5);  // spacing about 0.045
+  const JetFits fits = fit_jets(cube.points, 18, "cube");
+  const std::vector<Vec3>& jets = fits.normals;
+  std::size_t replaced = 0;
+  const std::vector<Vec3> normals = sharpen_normals(cube.points, fits, 18, &replaced);
+  EXPECT_GT(replaced, 1000u);
+  double band_before = 0, band_after = 0, far_worst = 0;
+  std::size_t band = 0;
+  for (std::size_t i = 0; i < cube.size(); ++i) {
+    EXPECT_GE(normals[i].dot(jets[i]), 0) << i;  // the signs are kept
+    // The distance to the nearest edge of the point's own face.
+    const Vec3& p = cube.points[i];
+    double edge = 2;
+    for (int a = 0; a < 3; ++a)
+      if (std::abs(p[a]) < 1) edge = std::min(edge, 1 - std::abs(p[a]));
+    const double before = degrees_between_lines(jets[i], cube.normals[i]);
+    const double after = degrees_between_lines(normals[i], cube.normals[i]);
+    if (edge >= 0.025 && edge < 0.1) {  // half a spacing to two from the edge
+      ++band;
+      band_before += before;
+      band_after += after;
+    } else if (edge >= 0.2) {
+      far_worst = std::max(far_worst, after);
+    }
+  }
+  ASSERT_GT(band, 1000u);
+  EXPECT_GT(band_before / band, 8.0);  // the jets' rounding
+  EXPECT_LT(band_after / band, 2.0);
+  EXPECT_LT(far_worst, 0.5);
 }
 
 TEST(Normals, MstOrientsEveryNormalOfASphereOneWay) {

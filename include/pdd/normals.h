@@ -1,8 +1,9 @@
 // Normals for point sets that come without them, or with an orientation that
 // cannot be trusted (photogrammetry, merged scans): estimation by jet fitting
-// and orientation by propagation along a minimum spanning tree, both from
-// CGAL's Point_set_processing_3. The pipeline (pipeline.h) can also orient
-// them along the gradient of a coarse solve that needs no orientation.
+// (CGAL's Point_set_processing_3), sharpened at the features; orientation by
+// segments turned by visibility votes, or along a minimum spanning tree
+// (CGAL's). The pipeline (pipeline.h) can also orient them along the gradient
+// of a coarse solve that needs no orientation.
 #pragma once
 
 #include <pdd/types.h>
@@ -21,18 +22,35 @@ constexpr std::size_t kMinPointsForNormals = 16;
 // One quadratic jet (osculating quadric, CGAL::Monge_via_jet_fitting) fitted
 // to each point and its k nearest neighbours: the point projected
 // onto it (noise removed at that scale) and its unit normal, of unknown sign.
-// k adapts the neighbourhood's radius to the local density. Throws InputError
-// naming `source` when there are fewer than kMinPointsForNormals points or a
-// neighbourhood is too degenerate for a plane.
+// k adapts the neighbourhood's radius to the local density. Each fit also
+// gives its neighbourhood's best-fitting plane (PCA), for sharpen_normals.
+// Throws InputError naming `source` when there are fewer than
+// kMinPointsForNormals points or a neighbourhood is too degenerate for a plane.
+struct LocalPlane {
+  Vec3 centre = Vec3::Zero();
+  Vec3 normal = Vec3::Zero();
+  double thickness = 0;  // the spread off the plane: the smallest eigenvalue's root
+  double variation = 0;  // surface variation l0 / (l0 + l1 + l2): 0 on a plane
+};
 struct JetFits {
   std::vector<Vec3> points;
   std::vector<Vec3> normals;
+  std::vector<LocalPlane> planes;
 };
 JetFits fit_jets(const std::vector<Vec3>& points, int neighbors, const std::string& source);
 
 // The normals of fit_jets alone.
 std::vector<Vec3> estimate_normals(const std::vector<Vec3>& points, int neighbors,
                                    const std::string& source);
+
+// Near sharp features a neighbourhood spans both sides of the edge and its
+// fitted normal rounds it off: each point whose neighbourhood is far from
+// planar takes the normal of the most planar neighbourhood among its
+// `neighbors` nearest points' whose plane passes through it (surface
+// variation, Pauly et al. 2002). `fits` are fit_jets(points, neighbors);
+// the signs of fits.normals are kept. Returns the normals and how many it replaced.
+std::vector<Vec3> sharpen_normals(const std::vector<Vec3>& points, const JetFits& fits,
+                                  int neighbors, std::size_t* replaced = nullptr);
 
 // The neighbourhood size for normals on points whose noise (estimate_noise,
 // solvers.h) is `noise` and average spacing `spacing`: `neighbors`, grown as

@@ -200,6 +200,8 @@ struct NormalsReport {
   std::size_t segments = 0;     // kSpectral, kVisibility: segments of consistent normals
   std::size_t unclear = 0;      // kVisibility: points of segments whose visibility was unclear
                                 // and that took a coarse spectral run's vote (one-sided scans)
+  std::size_t sharpened = 0;    // estimated normals taken from a neighbour's flatter neighbourhood
+                                // (sharp features: sharpen_normals, normals.h)
   std::size_t filled = 0;       // zero normals (none given) replaced by estimated ones
   int neighbors = 0;            // k of the orientation's jets: normal_neighbors, grown on noisy
                                 // points (noise_scaled_neighbors, normals.h)

@@ -1,7 +1,8 @@
 // Quadratic jets fitted to each point's neighbourhood (CGAL's Jet_fitting_3):
-// the normals and the projected points of normals.h. One fit gives both, so
-// noisy inputs, which need both, pay for one (CGAL's jet_estimate_normals and
-// jet_smooth_point_set each fit the same jets again).
+// the normals, the projected points and the neighbourhoods' planes of
+// normals.h. One fit gives all three, so noisy inputs, which need the first
+// two, pay for one (CGAL's jet_estimate_normals and jet_smooth_point_set each
+// fit the same jets again), and the planes cost no second neighbour query.
 #include <pdd/errors.h>
 #include <pdd/normals.h>
 
@@ -12,10 +13,33 @@
 #include <CGAL/Monge_via_jet_fitting.h>
 #include <CGAL/Simple_cartesian.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 
 namespace pdd {
+namespace {
+
+template <class Point>
+LocalPlane fit_plane(const std::vector<Point>& neighbourhood) {
+  const double count = static_cast<double>(neighbourhood.size());
+  Vec3 centre = Vec3::Zero();
+  for (const Point& p : neighbourhood) centre += Vec3(p.x(), p.y(), p.z());
+  centre /= count;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const Point& p : neighbourhood) {
+    const Vec3 d = Vec3(p.x(), p.y(), p.z()) - centre;
+    covariance += d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance / count);
+  const Eigen::Vector3d values = solver.eigenvalues().cwiseMax(0.0);  // ascending
+  const double sum = values.sum();
+  return {centre, solver.eigenvectors().col(0), std::sqrt(values[0]),
+          sum > 0 ? values[0] / sum : 0.0};
+}
+
+}  // namespace
 
 int noise_scaled_neighbors(double noise, double spacing, int neighbors) {
   if (!(spacing > 0) || !(noise > 0)) return neighbors;
@@ -40,6 +64,7 @@ JetFits fit_jets(const std::vector<Vec3>& points, int neighbors, const std::stri
   JetFits fits;
   fits.points.resize(points.size());
   fits.normals.resize(points.size());
+  fits.planes.resize(points.size());
   detail::polled_parallel_ranges(points.size(), [&](const tbb::blocked_range<std::size_t>& r) {
     std::vector<Kernel::Point_3> neighbourhood;
     for (std::size_t s = r.begin(); s != r.end(); ++s) {
@@ -54,6 +79,7 @@ JetFits fit_jets(const std::vector<Vec3>& points, int neighbors, const std::stri
       const Kernel::Point_3 o = form.origin();
       const Kernel::Vector_3 n = form.normal_direction();
       fits.points[i] = Vec3(o.x(), o.y(), o.z());
+      fits.planes[i] = fit_plane(neighbourhood);
       fits.normals[i] = Vec3(n.x(), n.y(), n.z());
     }
   });

@@ -153,25 +153,24 @@ const PointSet& prepare_normals(const PointSet& points, const ReconstructOptions
   // The spectral solver ignores the normals' signs (Eq. 16): estimated normals
   // are not oriented for it unless re-orienting was asked for.
   if (options.solver.kind == SolverKind::kSpectral && options.normals != NormalsMode::kOrient) {
-    storage.normals = estimate_normals(points.points, report.neighbors, options.source);
+    const JetFits fits = fit_jets(points.points, report.neighbors, options.source);
+    storage.normals = sharpen_normals(points.points, fits, report.neighbors, &report.sharpened);
     report.estimated = true;
     return finish();
   }
+  // The jets over the input's points, at the noise's scale on noisy points:
+  // the estimated normals handed on, and the smoothed points.
+  JetFits jets;
+  if (estimate || report.smoothed) jets = fit_jets(points.points, report.neighbors, options.source);
   PointSet guide;  // the geometry the orientation runs on
-  std::vector<Vec3> raw_jets;  // the normals of the jets that smoothed the points
-  if (report.smoothed) {
-    JetFits fits = fit_jets(points.points, report.neighbors, options.source);
-    guide.points = std::move(fits.points);
-    raw_jets = std::move(fits.normals);
-  } else {
-    guide.points = points.points;
-  }
+  guide.points = report.smoothed ? std::move(jets.points) : points.points;
   // The guide's own jets span the plain neighbourhood: its points are already
   // smoothed at the noise's scale, and a fit at that scale again would span
   // both sides of parts about as thin as the noise (the bunny's ears).
-  guide.normals = estimate || report.smoothed
+  guide.normals = report.smoothed
                       ? estimate_normals(guide.points, options.normal_neighbors, options.source)
-                      : storage.normals;
+                  : estimate ? jets.normals
+                             : storage.normals;
   const std::vector<Vec3> before = estimate ? guide.normals : storage.normals;
   report.estimated = estimate;
   report.oriented = true;
@@ -187,11 +186,12 @@ const PointSet& prepare_normals(const PointSet& points, const ReconstructOptions
       orient_by_visibility_vote(guide, options, report);
       break;
   }
-  // The normals handed on are the noise-scale jets' on noisy points (the
-  // guide's, fitted over fewer smoothed points, follow the noise's scale less:
-  // docs/benchmarks.md, "Normals"), the guide's otherwise, or the given ones;
-  // they take the sign of the oriented guide.
-  if (estimate) storage.normals = report.smoothed ? std::move(raw_jets) : guide.normals;
+  // The normals handed on are the jets' over the input's points, sharpened at
+  // the features (on noisy points the guide's, fitted over fewer smoothed
+  // points, follow the noise's scale less: docs/benchmarks.md, "Normals"), or
+  // the given ones; they take the sign of the oriented guide.
+  if (estimate)
+    storage.normals = sharpen_normals(points.points, jets, report.neighbors, &report.sharpened);
   for (std::size_t i = 0; i < storage.size(); ++i) {
     if (storage.normals[i].dot(guide.normals[i]) < 0) storage.normals[i] = -storage.normals[i];
     report.flipped += (estimate ? guide.normals[i] : storage.normals[i]).dot(before[i]) < 0;

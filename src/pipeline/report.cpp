@@ -39,6 +39,7 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
       << ", \"unreached\": " << result.normals.unreached
       << ", \"segments\": " << result.normals.segments
       << ", \"unclear\": " << result.normals.unclear
+      << ", \"sharpened\": " << result.normals.sharpened
       << ", \"filled\": " << result.normals.filled
       << ", \"seconds\": " << number(result.normals.seconds) << "},\n"
       << "  \"outliers\": {\"ratio\": " << number(result.outliers.ratio)
@@ -160,7 +161,12 @@ std::string normals_note(const Result& result) {
   const std::string scale =
       n.smoothed ? " over " + std::to_string(n.neighbors) + " neighbours (noisy points)" : "";
   std::string line = std::string("normals ") +
-                     (n.estimated ? "estimated by jet fitting" + scale + " and " : "") +
+                     (n.estimated ? "estimated by jet fitting" + scale +
+                                        (n.sharpened > 0 ? ", " + std::to_string(n.sharpened) +
+                                                               " from a flatter neighbourhood"
+                                                         : std::string()) +
+                                        " and "
+                                  : "") +
                      "oriented " +
                      (n.orientation == Orientation::kMst ? "along a minimum spanning tree"
                       : std::to_string(n.segments) + (n.segments == 1 ? " segment" : " segments") +
