@@ -88,10 +88,12 @@ enum class Stored { kAll, kLower };
 SparseMatrix hessian_energy(const TetMesh& mesh, Stored stored = Stored::kAll);
 
 // A^T diag(d) A for any sparse A (d.size() == A.rows()), e.g. the
-// bi-Laplacian L M_V^-1 L or Phi^T Phi. Computed column by column in
-// parallel (Gustavson's algorithm) and deterministic; on one thread it runs
-// at the speed of Eigen's (serial) sparse product for one-ring matrices.
-SparseMatrix gram_matrix(const SparseMatrix& A, const Eigen::VectorXd& d);
+// bi-Laplacian L M_V^-1 L or Phi^T Phi, all entries or its lower triangle.
+// Computed column by column in parallel (Gustavson's algorithm) and
+// deterministic; on one thread it runs at the speed of Eigen's (serial)
+// sparse product for one-ring matrices.
+SparseMatrix gram_matrix(const SparseMatrix& A, const Eigen::VectorXd& d,
+                         Stored stored = Stored::kAll);
 
 // The Galerkin product P^T A P (P: n x m, A: n x n symmetric, all entries
 // stored or its lower triangle alone), column by column in parallel and

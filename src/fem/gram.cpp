@@ -169,22 +169,27 @@ struct Columns {
 
 }  // namespace
 
-SparseMatrix gram_matrix(const SparseMatrix& A, const Eigen::VectorXd& d) {
+SparseMatrix gram_matrix(const SparseMatrix& A, const Eigen::VectorXd& d, Stored stored) {
   if (d.size() != A.rows()) throw std::invalid_argument("gram_matrix: d must have A.rows() entries");
   const Columns a(A);
   const Columns t(A, Columns::Transposed{});  // column k of t is row k of A
+  // Rows from `first(j)` on: all, or those on and below the diagonal.
+  const bool lower = stored == Stored::kLower;
+  const auto first = [&](int j) { return lower ? j : 0; };
   // Column j of A^T D A = sum over rows k of A in column j of d_k A_kj (row k of A)^T.
   return accumulate_columns(
       static_cast<int>(A.cols()),
       [&](int j, auto&& visit) {
         for (int p = a.outer[j]; p < a.outer[j + 1]; ++p)
-          for (int q = t.outer[a.inner[p]]; q < t.outer[a.inner[p] + 1]; ++q) visit(t.inner[q]);
+          for (int q = t.outer[a.inner[p]]; q < t.outer[a.inner[p] + 1]; ++q)
+            if (t.inner[q] >= first(j)) visit(t.inner[q]);
       },
       [&](int j, auto&& add) {
         for (int p = a.outer[j]; p < a.outer[j + 1]; ++p) {
           const int k = a.inner[p];
           const double w = d[k] * a.value[p];
-          for (int q = t.outer[k]; q < t.outer[k + 1]; ++q) add(t.inner[q], w * t.value[q]);
+          for (int q = t.outer[k]; q < t.outer[k + 1]; ++q)
+            if (t.inner[q] >= first(j)) add(t.inner[q], w * t.value[q]);
         }
       });
 }

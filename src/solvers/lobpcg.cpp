@@ -76,10 +76,10 @@ void normalize(Eigen::VectorXd& v, Eigen::VectorXd& av, Eigen::VectorXd& bv) {
 }  // namespace
 
 LobpcgResult largest_eigenpair(
-    const SparseMatrix& A, const SparseMatrix& B,
+    const SymmetricProduct<double>& A, const SymmetricProduct<double>& B,
     const std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>& precondition,
     Eigen::VectorXd& x, double tolerance, int max_iterations) {
-  const Eigen::Index n = A.rows();
+  const Eigen::Index n = A.matrix().rows();
   if (x.size() != n || !x.allFinite() || x.squaredNorm() == 0) {
     // No start given: a fixed pseudo-random one, so that runs repeat.
     std::mt19937 random(1);
@@ -88,14 +88,14 @@ LobpcgResult largest_eigenpair(
     for (Eigen::Index i = 0; i < n; ++i) x[i] = uniform(random);
   }
   Eigen::VectorXd ax, bx, w, aw, bw, p, ap, bp, r, c;
-  symmetric_product(A, x, ax);
-  symmetric_product(B, x, bx);
+  A(x, ax);
+  B(x, bx);
   LobpcgResult result;
   {
     const Eigen::VectorXd ones = Eigen::VectorXd::Ones(n);
     Eigen::VectorXd a1, b1;
-    symmetric_product(A, ones, a1);
-    symmetric_product(B, ones, b1);
+    A(ones, a1);
+    B(ones, b1);
     Basis start;
     start.add(x, ax, bx);
     start.add(ones, a1, b1);
@@ -110,8 +110,8 @@ LobpcgResult largest_eigenpair(
   double lambda = result.eigenvalue;
   for (int it = 0;; ++it) {
     if (it % 10 == 0 && it > 0) {  // the recurrences' rounding, reset
-      symmetric_product(A, x, ax);
-      symmetric_product(B, x, bx);
+      A(x, ax);
+      B(x, bx);
       const double xbx = deterministic_dot(x, bx);
       lambda = deterministic_dot(x, ax) / xbx;
       const double scale = 1 / std::sqrt(xbx);
@@ -129,8 +129,8 @@ LobpcgResult largest_eigenpair(
     // near the identity, whose small eigenvalues are real dependence and not
     // the scale of a converging step.
     w -= deterministic_dot(w, bx) * x;
-    symmetric_product(A, w, aw);
-    symmetric_product(B, w, bw);
+    A(w, aw);
+    B(w, bw);
     normalize(w, aw, bw);
     if (p.size() == n) normalize(p, ap, bp);
     Basis s;
@@ -150,8 +150,8 @@ LobpcgResult largest_eigenpair(
     ap.swap(nap);
     bp.swap(nbp);
   }
-  symmetric_product(A, x, ax);
-  symmetric_product(B, x, bx);
+  A(x, ax);
+  B(x, bx);
   const double xbx = deterministic_dot(x, bx);
   lambda = deterministic_dot(x, ax) / xbx;
   x /= std::sqrt(xbx);

@@ -8,6 +8,8 @@
 
 #include <pdd/fem.h>
 
+#include "common/parallel_kernels.h"
+
 #include <Eigen/Core>
 #include <functional>
 
@@ -20,13 +22,14 @@ struct LobpcgResult {
   bool converged = false;
 };
 
-// x: on entry the start (any non-zero vector; a previous solution makes it
+// A and B are applied as SymmetricProduct (all entries stored or the lower
+// triangle). x: on entry the start (any non-zero vector; a previous solution makes it
 // fast), on exit the eigenvector, scaled to x^T B x = 1. precondition(r, z)
 // sets z to an approximation of B^-1 r (one multigrid V-cycle, or an exact
 // solve), symmetric positive definite in r. The start is first improved in
 // span{x, 1}: a previous f differs from the new one mostly by a constant.
 LobpcgResult largest_eigenpair(
-    const SparseMatrix& A, const SparseMatrix& B,
+    const SymmetricProduct<double>& A, const SymmetricProduct<double>& B,
     const std::function<void(const Eigen::VectorXd&, Eigen::VectorXd&)>& precondition,
     Eigen::VectorXd& x, double tolerance, int max_iterations);
 

@@ -15,6 +15,13 @@
 namespace pdd::detail {
 namespace {
 
+// Drops the entries above the diagonal of a symmetric matrix in place and
+// frees their storage: Stored::kLower.
+void keep_lower_triangle(SparseMatrix& M) {
+  M.prune([](Eigen::Index row, Eigen::Index col, double) { return row >= col; });
+  M.data().squeeze();
+}
+
 // sum (f_i - f_j)^2 over the edges of the domain's outer boundary (the
 // faces of tets without a neighbour), each edge once per face it bounds.
 SparseMatrix outer_boundary_laplacian(const Domain& domain) {
@@ -68,7 +75,7 @@ class SpectralSolver final : public ImplicitSolver {
                             const std::vector<double>* warm_start) override {
     const auto start = Clock::now();
     stats_ = SolverStats();
-    const Problem p =
+    Problem p =
         make_problem(domain, points, "spectral solver",
                      "the spectral solver needs normals, oriented or not (Eq. 16)",
                      take_release_triangulation());
@@ -84,17 +91,26 @@ class SpectralSolver final : public ImplicitSolver {
     // gradient at a bounded cost in B, and the top eigenvector is a dipole
     // across that sliver (measured on the torus of the tests: the zero set
     // was off by 1.1 instead of 0.004).
-    const Eigen::VectorXd volume = tet_volumes(p.mesh);
-    double mean_volume = 0;
-    for (const Location& l : p.locations) mean_volume += volume[l.tet];
-    mean_volume /= nx;
-    std::vector<Eigen::Matrix3d> tensor(nt, Eigen::Matrix3d::Zero());
-    for (std::size_t i = 0; i < p.num_points; ++i) {
-      const int t = p.locations[i].tet;
-      tensor[t] += (volume[t] / mean_volume) *
-                   (Eigen::Matrix3d::Identity() + options_.mu * p.normals[i] * p.normals[i].transpose());
+    // The per-tet tensors (72 bytes a tet) go once A is built.
+    SparseMatrix A;
+    {
+      const Eigen::VectorXd volume = tet_volumes(p.mesh);
+      double mean_volume = 0;
+      for (const Location& l : p.locations) mean_volume += volume[l.tet];
+      mean_volume /= nx;
+      std::vector<Eigen::Matrix3d> tensor(nt, Eigen::Matrix3d::Zero());
+      for (std::size_t i = 0; i < p.num_points; ++i) {
+        const int t = p.locations[i].tet;
+        tensor[t] += (volume[t] / mean_volume) *
+                     (Eigen::Matrix3d::Identity() +
+                      options_.mu * p.normals[i] * p.normals[i].transpose());
+      }
+      weighted_stiffness(p.mesh, tensor).swap(A);  // Eigen 3.4's = would copy
     }
-    const SparseMatrix A = weighted_stiffness(p.mesh, tensor);
+    keep_lower_triangle(A);
+    // Phi stays for the isovalue at the end; the samples' locations and normals go.
+    std::vector<Location>().swap(p.locations);
+    std::vector<Vec3>().swap(p.normals);
 
     // Right side of Eq. (17), in units of l: alpha/|X| Phi^T Phi + beta L / l
     // + gamma l L M_V^-1 L (B = L M_V^-1 L is the bi-Laplacian), and the tie.
@@ -103,34 +119,39 @@ class SpectralSolver final : public ImplicitSolver {
             ? options_.alpha
             : spectral_value_weight(options_.noise >= 0 ? options_.noise : estimate_noise(points),
                                     p.length);
-    // The one-ring terms are added into the two-ring bi-Laplacian in place.
+    // The one-ring terms are added into the two-ring bi-Laplacian in place;
+    // A and B are kept as their lower triangles (half the memory, as SSD's).
     SparseMatrix B;
-    const SparseMatrix values = gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()));
-    if (options_.beta > 0 || options_.gamma > 0) {
-      const SparseMatrix L = cotangent_laplacian(p.mesh);
-      if (options_.gamma > 0) {
-        // L is symmetric, so L M_V^-1 L = L^T M_V^-1 L.
-        gram_matrix(L, vertex_masses(p.mesh).cwiseInverse()).swap(B);
-        B *= options_.gamma * p.length;
-        if (options_.beta > 0) add_to(B, L, options_.beta / p.length);
+    {
+      const SparseMatrix values =
+          gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows()), Stored::kLower);
+      if (options_.beta > 0 || options_.gamma > 0) {
+        const SparseMatrix L = cotangent_laplacian(p.mesh);
+        if (options_.gamma > 0) {
+          // L is symmetric, so L M_V^-1 L = L^T M_V^-1 L.
+          gram_matrix(L, vertex_masses(p.mesh).cwiseInverse(), Stored::kLower).swap(B);
+          B *= options_.gamma * p.length;
+          if (options_.beta > 0) add_to(B, L, options_.beta / p.length, true);
+        } else {
+          B = (options_.beta / p.length) * SparseMatrix(L.triangularView<Eigen::Lower>());
+        }
+        add_to(B, values, alpha / nx, true);
       } else {
-        B = (options_.beta / p.length) * L;
+        B = (alpha / nx) * values;
       }
-      add_to(B, values, alpha / nx);
-    } else {
-      B = (alpha / nx) * values;
     }
     if (options_.outer_tie > 0) {
       const SparseMatrix T = outer_boundary_laplacian(domain);
-      add_to(B, T, outer_tie_weight(B, T, options_.outer_tie));
+      add_to(B, T, outer_tie_weight(B, T, options_.outer_tie), true);
     }
     stats_.assembly_seconds = seconds_since(start);
 
-    linear_.compute(B, p.mesh.vertices);
+    linear_.compute(B, p.mesh.vertices, Stored::kLower);
     const auto solve_start = Clock::now();
     Eigen::VectorXd f = warm_start_vector(warm_start, p.mesh.vertices.size());
+    const SymmetricProduct<double> a(A, true), b(B, true);
     const LobpcgResult eig = largest_eigenpair(
-        A, B, [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { linear_.precondition(r, z); }, f,
+        a, b, [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { linear_.precondition(r, z); }, f,
         options_.tolerance, options_.max_iterations);
     stats_.iterations = eig.iterations;
     stats_.residual = eig.residual;
@@ -167,7 +188,7 @@ class SpectralSolver final : public ImplicitSolver {
     linear_.release();
     stats_.num_vertices = p.mesh.vertices.size();
     stats_.num_points = p.num_points;
-    stats_.nonzeros = static_cast<std::size_t>(B.nonZeros());
+    stats_.nonzeros = static_cast<std::size_t>(b.nonzeros());
     stats_.value_weight = alpha;
     return to_std(f);
   }
