@@ -80,15 +80,13 @@ double Domain::radius() const { return impl_->radius; }
 // A released domain is walked over its arrays (no triangulation rebuilt);
 // a live one by CGAL's walk.
 Location Domain::locate(const Vec3& p) const {
-  if (impl_->released.load(std::memory_order_acquire) && !impl_->mesh.tets.empty())
-    return impl_->walk(p, 0);
+  if (impl_->walkable()) return impl_->walk(p, 0);
   impl_->restore();
   return Impl::location(impl_->finite_cell_containing(p), p);
 }
 
 Location Domain::locate(const Vec3& p, int near_vertex) const {
-  if (impl_->released.load(std::memory_order_acquire) && !impl_->mesh.tets.empty())
-    return impl_->walk(p, impl_->start_tet(near_vertex));
+  if (impl_->walkable()) return impl_->walk(p, impl_->start_tet(near_vertex));
   impl_->restore();
   return Impl::location(impl_->finite_cell_containing(p, impl_->handles.at(near_vertex)->cell()),
                         p);

@@ -172,6 +172,9 @@ struct Domain::Impl {
   // While released: point location by a walk over the arrays from tet
   // `start` (walk.cpp), and the tet a vertex's walks start from.
   Location walk(const Vec3& p, int start) const;
+  bool walkable() const {
+    return released.load(std::memory_order_acquire) && !mesh.tets.empty();
+  }
   int start_tet(int vertex) const {
     const int code = released_vertex_cells.at(vertex);
     return code >= 0 ? code : (-2 - code) / 4;

@@ -15,13 +15,6 @@
 namespace pdd::detail {
 namespace {
 
-// Drops the entries above the diagonal of a symmetric matrix in place and
-// frees their storage: Stored::kLower.
-void keep_lower_triangle(SparseMatrix& M) {
-  M.prune([](Eigen::Index row, Eigen::Index col, double) { return row >= col; });
-  M.data().squeeze();
-}
-
 // sum (f_i - f_j)^2 over the edges of the domain's outer boundary (the
 // faces of tets without a neighbour), each edge once per face it bounds.
 SparseMatrix outer_boundary_laplacian(const Domain& domain) {
@@ -105,9 +98,8 @@ class SpectralSolver final : public ImplicitSolver {
                      (Eigen::Matrix3d::Identity() +
                       options_.mu * p.normals[i] * p.normals[i].transpose());
       }
-      weighted_stiffness(p.mesh, tensor).swap(A);  // Eigen 3.4's = would copy
+      SparseMatrix(weighted_stiffness(p.mesh, tensor).triangularView<Eigen::Lower>()).swap(A);
     }
-    keep_lower_triangle(A);
     // Phi stays for the isovalue at the end; the samples' locations and normals go.
     std::vector<Location>().swap(p.locations);
     std::vector<Vec3>().swap(p.normals);
