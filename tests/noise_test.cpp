@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <iostream>
 
 namespace pdd {
@@ -66,6 +68,30 @@ TEST(Noise, TheValueWeightIsKOverTheRelativeNoiseSquaredUpToItsCap) {
   std::cout << "value weight: sigma 0.005: " << low << ", sigma 0.01: " << high << "\n";
   EXPECT_LT(low, kSsdMaxValueWeight);
   EXPECT_LT(high, low);
+}
+
+// K (l / s)^3 up to its cap, s the noise while it is under r0 spacings, at
+// least F spacings from r1 spacings on, continuous in between.
+TEST(Noise, TheSpectralWeightSmoothsNoiseAtTheSpacingOverAFractionOfIt) {
+  const auto [r0, r1] = kSpectralSmoothedNoise;
+  const double F = kSpectralSmoothingSpacings, l = 2.0, h = 0.01;
+  const auto plain = [&](double s) {
+    return std::min(kSpectralValueWeightNoiseScale * std::pow(l / s, 3), kSpectralMaxValueWeight);
+  };
+  EXPECT_DOUBLE_EQ(spectral_value_weight(0.5 * r0 * h, h, l), plain(0.5 * r0 * h));
+  EXPECT_DOUBLE_EQ(spectral_value_weight(r0 * h, h, l), plain(r0 * h));
+  EXPECT_DOUBLE_EQ(spectral_value_weight(r1 * h, h, l), plain(F * h));
+  EXPECT_DOUBLE_EQ(spectral_value_weight(2 * F * h, h, l), plain(2 * F * h));  // the noise itself
+  EXPECT_DOUBLE_EQ(spectral_value_weight(r1 * h, 0, l), plain(r1 * h));  // no spacing: no floor
+  EXPECT_DOUBLE_EQ(spectral_value_weight(0, h, l), kSpectralMaxValueWeight);
+  // Continuous and never rising with the noise across the ramp.
+  double previous = spectral_value_weight(r0 * h, h, l);
+  for (int i = 1; i <= 100; ++i) {
+    const double w = spectral_value_weight((r0 + (1.2 * r1 - r0) * i / 100) * h, h, l);
+    EXPECT_LE(w, previous);
+    EXPECT_GT(w, 0.5 * previous);
+    previous = w;
+  }
 }
 
 TEST(Noise, TooFewNeighboursForACubicFitIsAnInputError) {

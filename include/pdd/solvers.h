@@ -149,6 +149,8 @@ struct SpectralOptions {
   double alpha = 0;     // f(p) small at the samples; 0: spectral_value_weight, from the input's
                         // noise. Larger follows the points more closely and their noise too
   double noise = -1;    // sigma of the automatic alpha; < 0: estimate_noise(points) at each solve
+  double spacing = -1;  // h of the automatic alpha; < 0: average_spacing(points) at each solve;
+                        // 0: no smoothing floor (spectral_value_weight)
   double beta = 0.0;    // Dirichlet energy in the constraint (no measured benefit)
   double gamma = 1.0;   // bi-Laplacian energy in the constraint (ACTD07's smoothness)
   double mu = 10.0;     // anisotropy: gradients along n_p count 1 + mu times more. Measured on
@@ -165,16 +167,18 @@ struct SpectralOptions {
                               // isovalue at the median of f over the samples
 };
 
-// The spectral solver's alpha for samples of noise sigma whose largest
-// bounding-box side is l:
-//   alpha = min(K (l / sigma)^3, kSpectralMaxValueWeight).
-// Measured on the bunny (0, 0.5 and 1 % noise): the best alpha is about 100 x
-// ssd_value_weight^1.5 (3e6 at 0.5 %, 1e6 at 1 %, 1e9 clean); the data term
-// sits in the eigenproblem's constraint, where it competes with a
-// fourth-order term, not in a least-squares fit.
-double spectral_value_weight(double noise, double length);
+// The spectral solver's alpha for samples of noise sigma and average spacing
+// h, largest bounding-box side l: min(K (l / s)^3, kSpectralMaxValueWeight),
+// where l alpha^(-1/3) is about the length s over which the bi-Laplacian
+// smooths them. s = sigma, but at least F h from sigma = r1 h on (ramped from
+// r0 h): noise interpolated there leaves bumps at the spacing that each
+// refinement resolves anew. K and the cap: the bunny at 0, 0.5 and 1 % noise;
+// r0, r1, F: virtual scans (docs/benchmarks.md, "The spectral solver").
+double spectral_value_weight(double noise, double spacing, double length);
 inline constexpr double kSpectralValueWeightNoiseScale = 0.65;
 inline constexpr double kSpectralMaxValueWeight = 1e9;  // 1e10 is no closer, and slower
+inline constexpr double kSpectralSmoothedNoise[2] = {0.08, 0.16};  // r0, r1: sigma / h
+inline constexpr double kSpectralSmoothingSpacings = 0.5;           // F
 
 struct SolverOptions {
   SolverKind kind = SolverKind::kSsd;  // the paper's experiments use SSD (§4)

@@ -528,8 +528,10 @@ Result run_stages(const PointSet& points, const ReconstructOptions& options, Pro
   if (kind == SolverKind::kPoisson && poisson.screened && poisson.alpha == 0 && poisson.noise < 0)
     poisson.noise = estimate_noise(relative);
   SpectralOptions& spectral = resolved.solver.spectral;
-  if (kind == SolverKind::kSpectral && spectral.alpha == 0 && spectral.noise < 0)
-    spectral.noise = estimate_noise(relative);
+  if (kind == SolverKind::kSpectral && spectral.alpha == 0) {
+    if (spectral.noise < 0) spectral.noise = estimate_noise(relative);
+    if (spectral.spacing < 0) spectral.spacing = average_spacing(relative);
+  }
   const double noise = kind == SolverKind::kSsd       ? ssd.noise
                        : kind == SolverKind::kPoisson ? poisson.noise
                                                       : spectral.noise;

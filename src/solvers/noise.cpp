@@ -67,10 +67,11 @@ double ssd_value_weight(double noise, double length) {
   return std::min(kSsdValueWeightNoiseScale / (sigma * sigma), kSsdMaxValueWeight);
 }
 
-double spectral_value_weight(double noise, double length) {
-  const double sigma = noise / length;
-  return std::min(kSpectralValueWeightNoiseScale / (sigma * sigma * sigma),
-                  kSpectralMaxValueWeight);
+double spectral_value_weight(double noise, double spacing, double length) {
+  const auto [r0, r1] = kSpectralSmoothedNoise;
+  const double ramp = spacing > 0 ? std::clamp((noise / spacing - r0) / (r1 - r0), 0.0, 1.0) : 0;
+  const double s = std::max(noise, kSpectralSmoothingSpacings * spacing * ramp) / length;
+  return std::min(kSpectralValueWeightNoiseScale / (s * s * s), kSpectralMaxValueWeight);
 }
 
 }  // namespace pdd

@@ -9,6 +9,7 @@
 #include "common/parallel_kernels.h"
 
 #include <pdd/errors.h>
+#include <pdd/sizing.h>
 
 #include <sstream>
 
@@ -110,6 +111,8 @@ class SpectralSolver final : public ImplicitSolver {
         options_.alpha > 0
             ? options_.alpha
             : spectral_value_weight(options_.noise >= 0 ? options_.noise : estimate_noise(points),
+                                    options_.spacing >= 0 ? options_.spacing
+                                                          : average_spacing(points),
                                     p.length);
     // The one-ring terms are added into the two-ring bi-Laplacian in place;
     // A and B are kept as their lower triangles (half the memory, as SSD's).
