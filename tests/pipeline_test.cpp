@@ -140,7 +140,7 @@ TEST(SpectralSolver, FollowsAThinPlate) {
 
 // Noise a fifth of the sample spacing (as in a dense scan): interpolated, as
 // the noise alone would set alpha, the zero set follows it in bumps at the
-// spacing; smoothed over half a spacing (spectral_value_weight's floor) it
+// spacing; smoothed over 0.45 of a spacing (spectral_value_weight's floor) it
 // lies nearer the truth. spacing = 0 turns the floor off.
 TEST(SpectralSolver, SmoothsNoiseAtTheSampleSpacing) {
   PointSet input = test::sample_sphere(6000);
@@ -158,7 +158,7 @@ TEST(SpectralSolver, SmoothsNoiseAtTheSampleSpacing) {
             << " mean " << da.mean << " max " << da.max << "; interpolated alpha "
             << b.iterations.back().solver.value_weight << " mean " << db.mean << " max "
             << db.max << "\n";
-  EXPECT_LT(a.iterations.back().solver.value_weight, 0.25 * b.iterations.back().solver.value_weight);
+  EXPECT_LT(a.iterations.back().solver.value_weight, 0.3 * b.iterations.back().solver.value_weight);
   EXPECT_LT(da.mean, 0.8 * db.mean);
 }
 

@@ -178,7 +178,7 @@ double spectral_value_weight(double noise, double spacing, double length);
 inline constexpr double kSpectralValueWeightNoiseScale = 0.65;
 inline constexpr double kSpectralMaxValueWeight = 1e9;  // 1e10 is no closer, and slower
 inline constexpr double kSpectralSmoothedNoise[2] = {0.08, 0.16};  // r0, r1: sigma / h
-inline constexpr double kSpectralSmoothingSpacings = 0.5;           // F
+inline constexpr double kSpectralSmoothingSpacings = 0.45;          // F
 
 struct SolverOptions {
   SolverKind kind = SolverKind::kSsd;  // the paper's experiments use SSD (§4)
