@@ -2,6 +2,7 @@
 #include <pdd/isofacet.h>
 #include <pdd/pipeline.h>
 #include <pdd/quality.h>
+#include <pdd/refine.h>
 #include <pdd/report.h>
 #include <pdd/solvers.h>
 
@@ -579,6 +580,39 @@ TEST(Pipeline, EverySolveButTheFirstRunsOnAnOptimizedRefinedDomain) {
     EXPECT_GT(r.iterations[i - 1].inserted_points, 0) << "iteration " << s.iteration - 1;
   }
   EXPECT_EQ(r.iterations.back().inserted_points, 0);
+}
+
+TEST(Pipeline, TheStatisticsShowWhyTheLoopRefinedAndWhyItStopped) {
+  // Each iteration records its isofacets against the sizing field: every one
+  // that was refined had not met it (mean area ratio over 1, or too many
+  // facets at 4x their target), and the last met it or followed a refinement
+  // that split under 2 % of the crossing tets.
+  const PointSet input = test::sample_sphere(1000);
+  const ReconstructOptions o = fast_options(SolverKind::kSsd, 0.15);
+  const Result r = reconstruct(input, o);
+  ASSERT_GE(r.iterations.size(), 3u);
+  const auto met = [](const IterationStats& s) {
+    IsofacetAreaStats a;
+    a.count = s.crossing_tets;
+    a.mean_ratio = s.mean_area_ratio;
+    a.above_4 = s.above_4;
+    return sizing_met(a);
+  };
+  for (std::size_t i = 0; i + 1 < r.iterations.size(); ++i) {
+    const IterationStats& s = r.iterations[i];
+    EXPECT_GT(s.crossing_tets, 0) << "iteration " << s.iteration;
+    EXPECT_FALSE(met(s)) << "iteration " << s.iteration << ": mean ratio " << s.mean_area_ratio;
+    EXPECT_GT(s.trisected + s.bisected, 0) << "iteration " << s.iteration;
+  }
+  const IterationStats& last = r.iterations.back();
+  const IterationStats& before = r.iterations[r.iterations.size() - 2];
+  EXPECT_GT(last.crossing_tets, before.crossing_tets);
+  EXPECT_GT(last.mean_area_ratio, 0.0);
+  EXPECT_LT(last.mean_area_ratio, before.mean_area_ratio);
+  EXPECT_TRUE(met(last) || before.trisected + before.bisected <
+                               0.03 * static_cast<double>(before.crossing_tets))
+      << "mean ratio " << last.mean_area_ratio << ", " << last.above_4 << " of "
+      << last.crossing_tets << " at 4x their target";
 }
 
 TEST(Pipeline, RejectsBadOptions) {

@@ -175,7 +175,9 @@ class Run {
       if (refined_last) optimize(domain, it, stats, options_.optimizer_rounds);
       solve(domain, it, stats);
       refined_last = false;
-      bool converged = sizing_met(within_budget(domain, sizing));
+      const IsofacetAreaStats measured = within_budget(domain, sizing);
+      record_sizing(measured, stats);
+      bool converged = sizing_met(measured);
       const bool over_budget = !converged && !budget_.allows_refining(domain.num_vertices());
       if (!over_budget && !converged) {
         optimize(domain, it, stats, options_.optimizer_rounds_before_refining);
@@ -196,7 +198,7 @@ class Run {
       result_.iterations.push_back(stats);
       if (last) break;
     }
-    return finish(std::move(domain), /*optimize_first=*/refined_last);
+    return finish(std::move(domain), /*optimize_first=*/refined_last, sizing.get());
   }
 
   // §4.2 (3): our refiner on the first solution, interpolated, no optimizer
@@ -343,13 +345,20 @@ class Run {
   }
 
   // The final solve on the final domain (optimized first if asked), and
-  // its isosurface.
-  Result finish(Domain domain, bool optimize_first = false) {
+  // its isosurface, measured against `sizing` when there is one.
+  Result finish(Domain domain, bool optimize_first = false, const SizingField* sizing = nullptr) {
     const int last = result_.iterations.empty() ? 1 : result_.iterations.back().iteration + 1;
     IterationStats stats;
     if (optimize_first) optimize(domain, last, stats, options_.optimizer_rounds);
     solve(domain, last, stats);
+    if (sizing) record_sizing(isofacet_area_stats(domain, *sizing), stats);
     return finish_with(std::move(domain), std::move(stats));
+  }
+
+  static void record_sizing(const IsofacetAreaStats& measured, IterationStats& stats) {
+    stats.crossing_tets = measured.count;
+    stats.mean_area_ratio = measured.mean_ratio;
+    stats.above_4 = measured.above_4;
   }
 
   // The result, with `stats` (of the solve whose contour is contour_) as its

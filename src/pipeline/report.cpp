@@ -85,6 +85,8 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
         << ", \"optimizer_cg_iterations\": " << s.optimizer_cg_iterations
         << ", \"rejected_moves\": " << s.rejected_moves << ", \"trisected\": " << s.trisected
         << ", \"bisected\": " << s.bisected << ", \"inserted_points\": " << s.inserted_points
+        << ", \"crossing_tets\": " << s.crossing_tets
+        << ", \"mean_area_ratio\": " << number(s.mean_area_ratio) << ", \"above_4\": " << s.above_4
         << ", \"mean_min_angle\": " << number(s.mean_min_angle)
         << ", \"fraction_below_30\": " << number(s.fraction_below_30)
         << ", \"seconds\": {\"solve\": " << number(s.seconds_solve)
