@@ -105,13 +105,15 @@ class AdaptiveSizing : public SizingField {
 
   std::vector<double> target_areas(const Domain& domain,
                                    const std::vector<Isofacet>& facets) const override {
-    // Curvature per crossing tet: max over the k nearest input points.
+    // Curvature per crossing tet: the mean over the k nearest input points
+    // (their maximum spread each curved sample's fine target over a disc of
+    // about two spacings: more triangles for the same mean distance).
     std::vector<double> c(facets.size());
     detail::polled_parallel_for(facets.size(), [&](std::size_t i) {
-      double m = 0;
-      for (int j : neighbors_.query(facets[i].centroid, options_.neighbors))
-        m = std::max(m, curvature_[j]);
-      c[i] = m;
+      const auto nearest = neighbors_.query(facets[i].centroid, options_.neighbors);
+      double sum = 0;
+      for (int j : nearest) sum += curvature_[j];
+      c[i] = nearest.empty() ? 0.0 : sum / static_cast<double>(nearest.size());
     });
     // Smoothed like the ASAP volume field (average over the tet and its
     // crossing neighbours), then clipped to [c_min, c_max].
