@@ -147,6 +147,38 @@ TEST(Normals, ZeroNormalsAreFilledFromTheirNeighbours) {
   EXPECT_EQ(surface_topology(r.mesh).components, 1u);
 }
 
+TEST(Normals, APatchOfZeroNormalsTakesTheSignOfTheNearestGivenOnes) {
+  // A cap of zero normals: inside it the nearest points give no sign.
+  PointSet sphere = test::sample_sphere(3000);
+  const std::vector<Vec3> truth = sphere.normals;
+  std::size_t cap = 0;
+  for (std::size_t i = 0; i < sphere.size(); ++i)
+    if (sphere.points[i].z() > 0.7) {
+      sphere.normals[i] = Vec3::Zero();
+      ++cap;
+    }
+  ASSERT_GT(cap, 300u);
+  std::vector<Vec3> normals = sphere.normals;
+  EXPECT_EQ(fill_missing_normals(sphere.points, normals, 18, "s"), cap);
+  for (std::size_t i = 0; i < sphere.size(); ++i)
+    EXPECT_GT(normals[i].dot(truth[i]), std::cos(2 * M_PI / 180)) << i;
+}
+
+TEST(Normals, NormalsThatAreAllZeroAreEstimatedAndOriented) {
+  PointSet sphere = test::sample_sphere(2000);
+  for (Vec3& n : sphere.normals) n = Vec3::Zero();
+  std::vector<Vec3> normals = sphere.normals;
+  EXPECT_THROW(fill_missing_normals(sphere.points, normals, 18, "s"), std::invalid_argument);
+  const Result r = reconstruct(sphere, bare_options(0.1, Orientation::kVisibility));
+  EXPECT_TRUE(r.normals.estimated && r.normals.oriented);
+  EXPECT_EQ(r.normals.filled, 0u);
+  const SurfaceTopology t = surface_topology(r.mesh);
+  EXPECT_TRUE(t.closed && t.manifold);
+  EXPECT_EQ(t.components, 1);
+  EXPECT_EQ(t.genus, 0);
+  for (const Vec3& v : r.mesh.vertices) EXPECT_NEAR(v.norm(), 1.0, 0.02);
+}
+
 TEST(Normals, TooFewPointsAreAnInputErrorNamingTheSource) {
   const PointSet few = without_normals(test::sample_sphere(10));
   ReconstructOptions o = bare_options(0.3);

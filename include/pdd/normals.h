@@ -97,9 +97,10 @@ std::vector<double> visibility_votes(const std::vector<Vec3>& points,
 
 // Replaces the zero normals ((0, 0, 0): none, as some scanners write it) by
 // ones estimated by jet fitting over `neighbors` nearest points, each turned to
-// agree with the given normals among those neighbours. Returns how many it
-// replaced. Throws InputError naming `source` when there are fewer than
-// kMinPointsForNormals points.
+// agree with the `neighbors` nearest given (non-zero) normals. Returns how many
+// it replaced. Throws InputError naming `source` when there are fewer than
+// kMinPointsForNormals points, std::invalid_argument when every normal is zero
+// (points without normals: estimate and orient them instead).
 std::size_t fill_missing_normals(const std::vector<Vec3>& points, std::vector<Vec3>& normals,
                                  int neighbors, const std::string& source);
 

@@ -126,9 +126,12 @@ void orient_by_visibility_vote(PointSet& input, const ReconstructOptions& option
 
 const PointSet& prepare_normals(const PointSet& points, const ReconstructOptions& options,
                                 PointSet& storage, NormalsReport& report) {
-  const bool estimate = !points.has_normals() || options.normals == NormalsMode::kEstimate;
-  const bool zeros = !estimate && std::any_of(points.normals.begin(), points.normals.end(),
-                                              [](const Vec3& n) { return n.squaredNorm() == 0; });
+  // Normals that are all zero are none (a file with the columns but no values).
+  const auto is_zero = [](const Vec3& n) { return n.squaredNorm() == 0; };
+  const bool estimate = !points.has_normals() || options.normals == NormalsMode::kEstimate ||
+                        std::all_of(points.normals.begin(), points.normals.end(), is_zero);
+  const bool zeros =
+      !estimate && std::any_of(points.normals.begin(), points.normals.end(), is_zero);
   if (!estimate && !zeros && options.normals == NormalsMode::kKeep) return points;
   const auto start = std::chrono::steady_clock::now();
   const auto finish = [&]() -> const PointSet& {
