@@ -97,7 +97,8 @@ void reconstruct(ReconstructArgs& args) {
   if (result.cancelled) throw Interrupted{};
   if (!args.quiet && ::isatty(STDERR_FILENO)) std::cerr << "\n";
   for (const std::string& note : {outliers_note(result), normals_note(result),
-                                  memory_budget_note(result), trim_note(result)})
+                                  memory_budget_note(result), trim_note(result),
+                                  open_surface_note(result)})
     if (!note.empty()) std::cerr << "pdd: " << note << "\n";
   if (result.mesh.faces.empty())
     throw std::runtime_error("reconstruct: " + args.input +

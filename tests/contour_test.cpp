@@ -540,8 +540,11 @@ TEST(OpenComponents, TheLargestStaysEvenWhenOpen) {
   EXPECT_EQ(remove_open_components(mesh).components, 1);
   EXPECT_EQ(mesh.faces.size(), largest);
   EXPECT_GT(surface_topology(mesh).boundary_edges, 0u);
+  EXPECT_EQ(count_boundary_edges(mesh), surface_topology(mesh).boundary_edges);
+  EXPECT_EQ(count_boundary_edges(subdivided_sphere(3, 1.0, Vec3::Zero())), 0u);
   TriangleMesh empty;
   EXPECT_EQ(remove_open_components(empty).components, 0);
+  EXPECT_EQ(count_boundary_edges(empty), 0u);
 }
 
 }  // namespace

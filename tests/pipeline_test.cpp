@@ -735,6 +735,34 @@ TEST(Pipeline, ATrimmedHemisphereIsOneOpenPieceNearTheSamples) {
   EXPECT_LT(q.fraction_below_20, closed.fraction_below_20 + 0.01);
   EXPECT_GT(q.mean_min_angle, closed.mean_min_angle - 1.5);
   EXPECT_EQ(r.iterations.back().triangles, r.mesh.faces.size());
+  // The trim's rim is counted, but is no surprise to report.
+  EXPECT_EQ(r.iterations.back().boundary_edges, surface_topology(r.mesh).boundary_edges);
+  EXPECT_EQ(open_surface_note(r), "");
+}
+
+TEST(Pipeline, AnOpenSheetThatReachesTheDomainsBoundaryIsReported) {
+  // A shallow cap sampled on one side only, its normals up: the zero set runs
+  // on to the domain's boundary sphere, and the output is open there.
+  PointSet sheet;
+  const int n = 40;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double x = -1 + 2.0 * (i + 0.5) / n, y = -1 + 2.0 * (j + 0.5) / n;
+      sheet.points.emplace_back(x, y, 0.1 * (x * x + y * y));
+      sheet.normals.push_back(Vec3(-0.2 * x, -0.2 * y, 1).normalized());
+    }
+  const Result r = reconstruct(sheet, fast_options(SolverKind::kSsd, 0.1));
+  const std::size_t edges = surface_topology(r.mesh).boundary_edges;
+  EXPECT_GT(edges, 0u);
+  EXPECT_EQ(r.iterations.back().boundary_edges, edges);
+  EXPECT_NE(open_surface_note(r).find("the output is open (" + std::to_string(edges) +
+                                      " boundary edges)"),
+            std::string::npos)
+      << open_surface_note(r);
+  // A closed surface has none, and no note.
+  const Result sphere = reconstruct(test::sample_sphere(1500), fast_options(SolverKind::kSsd, 0.15));
+  EXPECT_EQ(sphere.iterations.back().boundary_edges, 0u);
+  EXPECT_EQ(open_surface_note(sphere), "");
 }
 
 // Pairs of points on the sphere far below a scanned hemisphere's rim: the

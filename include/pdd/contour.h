@@ -67,6 +67,9 @@ RemovedComponents remove_small_components(TriangleMesh& mesh, double min_edges);
 // boundary (a one-view scan's invented back) stays. Not in the paper.
 RemovedComponents remove_open_components(TriangleMesh& mesh);
 
+// The edges of one face only: 0 for a closed mesh.
+std::size_t count_boundary_edges(const TriangleMesh& mesh);
+
 // Removes the components, but the largest, that too few of `samples`
 // support (are nearest to): fewer than min_samples, or fewer per unit area
 // than a tenth of the whole mesh's samples per unit area. The blobs and

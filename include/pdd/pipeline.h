@@ -172,6 +172,9 @@ struct IterationStats {
   RemovedComponents unsupported_components;
   CutHandles handles;
   CleanupReport cleanup;
+  // Edges of one face in the mesh returned: where the surface reaches the
+  // domain's boundary (points that enclose no volume), or the trim's rim.
+  std::size_t boundary_edges = 0;
   double seconds_cleanup = 0;
 };
 

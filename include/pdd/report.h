@@ -37,6 +37,10 @@ std::string outliers_note(const Result& result);
 // One line on what --trim cut, or "" when the run did not trim.
 std::string trim_note(const Result& result);
 
+// One line when an untrimmed output is open (its surface reaches the domain's
+// boundary), or "" when it is closed.
+std::string open_surface_note(const Result& result);
+
 // --save-iterations: writes the isosurface (.ply) and the domain with f (.vtu)
 // of every iteration into `folder`, created if missing (Figure 7). InputError
 // at once when `folder` cannot be (check_output_path, OutputKind::kFolder).

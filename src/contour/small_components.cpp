@@ -107,12 +107,13 @@ RemovedComponents remove_small_components(TriangleMesh& mesh, double min_edges) 
   return remove_marked(mesh, c, small);
 }
 
-RemovedComponents remove_open_components(TriangleMesh& mesh) {
-  if (mesh.faces.empty()) return {};
-  const Components c = components(mesh);
-  // An edge that one face alone has is a boundary edge. The edges are
-  // bucketed by their smaller end (a counting sort: linear, and polled), then
-  // sorted within their bucket of a few.
+namespace {
+
+// visit(v) for the smaller end v of every boundary edge (an edge of one face
+// only). The edges are bucketed by their smaller end (a counting sort: linear,
+// and polled), then sorted within their bucket of a few.
+template <class Visit>
+void for_each_boundary_edge(const TriangleMesh& mesh, Visit visit) {
   const std::size_t nv = mesh.vertices.size();
   std::vector<std::size_t> first(nv + 1, 0);
   for (const auto& f : mesh.faces)
@@ -126,7 +127,6 @@ RemovedComponents remove_open_components(TriangleMesh& mesh) {
       other[fill[a]++] = b;
     }
   detail::poll();
-  std::vector<char> open(nv, 0);
   for (std::size_t v = 0; v < nv; ++v) {
     detail::poll_every(v);
     const auto begin = other.begin() + first[v], end = other.begin() + first[v + 1];
@@ -134,11 +134,28 @@ RemovedComponents remove_open_components(TriangleMesh& mesh) {
     for (auto i = begin; i != end;) {
       auto j = i + 1;
       while (j != end && *j == *i) ++j;
-      if (j - i == 1 && c.root_of[v] != c.largest) open[c.root_of[v]] = 1;
+      if (j - i == 1) visit(v);
       i = j;
     }
   }
+}
+
+}  // namespace
+
+RemovedComponents remove_open_components(TriangleMesh& mesh) {
+  if (mesh.faces.empty()) return {};
+  const Components c = components(mesh);
+  std::vector<char> open(mesh.vertices.size(), 0);
+  for_each_boundary_edge(mesh, [&](std::size_t v) {
+    if (c.root_of[v] != c.largest) open[c.root_of[v]] = 1;
+  });
   return remove_marked(mesh, c, open);
+}
+
+std::size_t count_boundary_edges(const TriangleMesh& mesh) {
+  std::size_t count = 0;
+  for_each_boundary_edge(mesh, [&](std::size_t) { ++count; });
+  return count;
 }
 
 RemovedComponents remove_unsupported_components(TriangleMesh& mesh,

@@ -319,6 +319,7 @@ class Run {
     if (options_.cleanup)
       stats.cleanup = cleanup_isosurface(result_.mesh, options_.cleanup_options);
     if (options_.handles.enabled) stats.handles.handles += cut_triangle_waists(result_.mesh);
+    stats.boundary_edges = count_boundary_edges(result_.mesh);
     stats.seconds_cleanup = seconds_since(t);
     stats.isovertices = result_.mesh.vertices.size();
     stats.triangles = result_.mesh.faces.size();

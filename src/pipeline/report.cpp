@@ -107,7 +107,8 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
         << ", \"cut_handle_faces\": " << s.handles.faces
         << ", \"cleanup_flips\": " << s.cleanup.flips
         << ", \"cleanup_collapses\": " << s.cleanup.collapses
-        << ", \"cleanup_moves\": " << s.cleanup.moves << "}";
+        << ", \"cleanup_moves\": " << s.cleanup.moves
+        << ", \"boundary_edges\": " << s.boundary_edges << "}";
   }
   out << "\n  ]\n}\n";
   return out.str();
@@ -206,6 +207,16 @@ std::string trim_note(const Result& result) {
                 t.holes_kept, t.holes_kept == 1 ? "" : "s", t.islands.components,
                 t.islands.components == 1 ? "" : "s", t.islands.faces);
   return line;
+}
+
+std::string open_surface_note(const Result& result) {
+  if (result.trim.trimmed || result.iterations.empty()) return "";
+  const std::size_t edges = result.iterations.back().boundary_edges;
+  if (edges == 0) return "";
+  return "the output is open (" + std::to_string(edges) + " boundary edge" +
+         (edges == 1 ? "" : "s") +
+         "): its surface reaches the domain's boundary, as the points enclose no volume there "
+         "(an open scan's unseen side); --trim 2 keeps only the part the points support";
 }
 
 std::string memory_budget_note(const Result& result) {
