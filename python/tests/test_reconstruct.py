@@ -157,7 +157,8 @@ def test_a_real_sigint_stops_a_run_without_a_callback(tmp_path):
 
 def test_points_without_normals_and_flipped_normals(sphere, sphere_mesh):
     points, normals = sphere
-    bare = pdd.reconstruct(points, target_edge=EDGE, threads=2)
+    with pytest.warns(UserWarning, match="normals estimated by jet fitting"):
+        bare = pdd.reconstruct(points, target_edge=EDGE, threads=2)
     assert bare.stats["normals"]["estimated"] and bare.stats["normals"]["oriented"]
     assert pdd.quality(bare)["surface"]["genus"] == 0
     # Estimated normals: max 0.0103, mean 0.00054 (with the true normals 0.0079 and 0.00054)
@@ -168,3 +169,17 @@ def test_points_without_normals_and_flipped_normals(sphere, sphere_mesh):
     cloud = pdd.estimate_normals(points)
     assert cloud.normals.shape == points.shape
     assert np.all(np.sum(cloud.normals * points, axis=1) > 0.99)  # unit, outward
+
+
+def test_an_open_sheet_and_a_trimmed_run_say_so(sphere):
+    # Notes as the command line prints them: an output that runs into the
+    # domain's boundary is open, and a trimmed one says what it cut.
+    points, normals = sphere
+    upper = points[:, 2] > 0.3
+    up = np.tile([0.0, 0.0, 1.0], (upper.sum(), 1))  # a sheet facing up: no inside
+    with pytest.warns(UserWarning, match="the output is open"):
+        sheet = pdd.reconstruct(points[upper], up, target_edge=EDGE, threads=2)
+    assert sheet.stats["iterations"][-1]["boundary_edges"] > 0
+    with pytest.warns(UserWarning, match="trimmed to the samples"):
+        pdd.reconstruct(points[upper], normals[upper], trim=2, target_edge=EDGE, threads=2)
+
