@@ -96,10 +96,7 @@ void reconstruct(ReconstructArgs& args) {
   const Result result = pdd::reconstruct(points, args.options);
   if (result.cancelled) throw Interrupted{};
   if (!args.quiet && ::isatty(STDERR_FILENO)) std::cerr << "\n";
-  for (const std::string& note : {outliers_note(result), normals_note(result),
-                                  memory_budget_note(result), trim_note(result),
-                                  open_surface_note(result)})
-    if (!note.empty()) std::cerr << "pdd: " << note << "\n";
+  for (const std::string& note : run_notes(result)) std::cerr << "pdd: " << note << "\n";
   if (result.mesh.faces.empty())
     throw std::runtime_error("reconstruct: " + args.input +
                              ": the isosurface is empty (the solver found no surface)");

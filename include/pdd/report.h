@@ -9,6 +9,7 @@
 #include <pdd/quality.h>
 
 #include <string>
+#include <vector>
 
 namespace pdd {
 
@@ -40,6 +41,10 @@ std::string trim_note(const Result& result);
 // One line when an untrimmed output is open (its surface reaches the domain's
 // boundary), or "" when it is closed.
 std::string open_surface_note(const Result& result);
+
+// The notes above that a run has, in the order the command line prints them
+// (the Python module warns with the same).
+std::vector<std::string> run_notes(const Result& result);
 
 // --save-iterations: writes the isosurface (.ply) and the domain with f (.vtu)
 // of every iteration into `folder`, created if missing (Figure 7). InputError

@@ -87,10 +87,7 @@ py::dict reconstruct(const py::handle& points, const py::handle& normals,
   out["stats"] = statistics_json(result, run_options);
   out["table"] = statistics_table(result);
   py::list notes;
-  for (const std::string& note :
-       {outliers_note(result), normals_note(result), memory_budget_note(result),
-        trim_note(result), open_surface_note(result)})
-    if (!note.empty()) notes.append(note);
+  for (const std::string& note : run_notes(result)) notes.append(note);
   out["notes"] = notes;
   out["attributes"] = list_from(std::move(result.mesh.attributes));
   out["vertices"] = array_from(std::move(result.mesh.vertices));

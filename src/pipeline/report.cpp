@@ -219,6 +219,14 @@ std::string open_surface_note(const Result& result) {
          "(an open scan's unseen side); --trim 2 keeps only the part the points support";
 }
 
+std::vector<std::string> run_notes(const Result& result) {
+  std::vector<std::string> notes;
+  for (std::string note : {outliers_note(result), normals_note(result), memory_budget_note(result),
+                           trim_note(result), open_surface_note(result)})
+    if (!note.empty()) notes.push_back(std::move(note));
+  return notes;
+}
+
 std::string memory_budget_note(const Result& result) {
   const MemoryBudget& b = result.budget;
   char line[320];
