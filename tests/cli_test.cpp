@@ -207,6 +207,8 @@ TEST_F(CliTest, ReconstructWritesTheMeshStatisticsDomainAndIterations) {
   const std::string stats = slurp(path("stats.json"));
   EXPECT_NE(stats.find("\"triangles\": " + std::to_string(mesh.faces.size())), std::string::npos)
       << stats;
+  // The samples' value weight under a name that holds for every solver.
+  EXPECT_NE(stats.find("\"value_weight\": 60000"), std::string::npos) << stats;
   EXPECT_NE(slurp(path("d.vtu")).find("<UnstructuredGrid>"), std::string::npos);
   EXPECT_TRUE(fs::exists(path("steps/iteration_01_isosurface.ply")));
   EXPECT_TRUE(fs::exists(path("steps/iteration_01_domain.vtu")));

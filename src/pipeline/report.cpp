@@ -81,7 +81,7 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
         << "\", \"solver_iterations\": " << s.solver.iterations
         << ", \"solver_levels\": " << s.solver.levels
         << ", \"solver_residual\": " << number(s.solver.residual)
-        << ", \"ssd_alpha\": " << number(s.solver.value_weight)
+        << ", \"value_weight\": " << number(s.solver.value_weight)
         << ", \"optimizer_cg_iterations\": " << s.optimizer_cg_iterations
         << ", \"rejected_moves\": " << s.rejected_moves << ", \"trisected\": " << s.trisected
         << ", \"bisected\": " << s.bisected << ", \"inserted_points\": " << s.inserted_points
