@@ -25,8 +25,7 @@ struct RefinementStats {
   int bisected = 0;
   int left = 0;            // crossing tets not refined
   int inserted_points = 0;
-  IsofacetAreaStats before;  // on the domain given
-  IsofacetAreaStats after;   // on the refined domain, with f interpolated
+  IsofacetAreaStats before;  // on the domain given (the refined one's: isofacet_area_stats)
 };
 
 // The rules of §3.4 for one tet: r_t = area / target; returns 3 to trisect,

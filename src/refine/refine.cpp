@@ -146,9 +146,6 @@ RefinementStats refine(Domain& domain, const SizingField& sizing, std::mt19937_6
   }
   detail::poll();
   stats.inserted_points = static_cast<int>(domain.insert(points.points()).size());
-
-  const std::vector<Isofacet> after = isofacets(domain.mesh(), domain.f());
-  stats.after = isofacet_area_stats(after, sizing.target_areas(domain, after));
   return stats;
 }
 
