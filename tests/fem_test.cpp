@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <cmath>
 #include <random>
 #include <set>
 
@@ -280,6 +281,41 @@ TEST_F(FemTest, HessianEnergysLowerTriangleIsTheSameEntries) {
     ASSERT_EQ(lower.innerIndexPtr()[k], expected.innerIndexPtr()[k]);
     ASSERT_EQ(lower.valuePtr()[k], expected.valuePtr()[k]);
   }
+}
+
+// SSD adds its samples' gradient term into the Hessian energy in place, from
+// the sampled tets alone: exactly the sum with the whole weighted stiffness.
+TEST_F(FemTest, WeightedStiffnessAddedInPlaceFromTheWeightedTetsIsTheSum) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<double> weights(mesh.tets.size(), 0.0);
+  int weighted = 0;
+  for (double& x : weights)
+    if (u(rng) < 0.2) {
+      x = 1 + std::floor(5 * u(rng));  // sample counts
+      ++weighted;
+    }
+  ASSERT_GT(weighted, 10);
+  const SparseMatrix stiffness = weighted_stiffness(mesh, weights);
+  for (const Stored stored : {Stored::kAll, Stored::kLower}) {
+    SparseMatrix in_place = hessian_energy(mesh, stored);
+    SparseMatrix expected = in_place;
+    const SparseMatrix added = stored == Stored::kLower
+                                   ? SparseMatrix(stiffness.triangularView<Eigen::Lower>())
+                                   : stiffness;
+    expected += 0.7 * added;
+    add_weighted_stiffness(in_place, mesh, weights, 0.7, stored);
+    ASSERT_EQ(in_place.nonZeros(), hessian_energy(mesh, stored).nonZeros());  // no new entry
+    EXPECT_LT(SparseMatrix(in_place - expected).norm(), 1e-14 * expected.norm());
+    EXPECT_GT(SparseMatrix(in_place - hessian_energy(mesh, stored)).norm(), 0.1 * added.norm());
+  }
+  // A pattern without the one-rings (the diagonal alone) cannot take it.
+  SparseMatrix diagonal(static_cast<Eigen::Index>(mesh.vertices.size()),
+                        static_cast<Eigen::Index>(mesh.vertices.size()));
+  diagonal.setIdentity();
+  EXPECT_THROW(add_weighted_stiffness(diagonal, mesh, weights, 1.0), std::logic_error);
+  EXPECT_THROW(add_weighted_stiffness(diagonal, mesh, std::vector<double>(3, 1.0), 1.0),
+               std::invalid_argument);
 }
 
 // hessian_energy assembles H a slice of columns at a time (32768): on a mesh

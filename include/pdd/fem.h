@@ -79,6 +79,14 @@ SparseMatrix hessian_matrix(const TetMesh& mesh);
 // selfadjointView<Eigen::Lower>()).
 enum class Stored { kAll, kLower };
 
+// A += w weighted_stiffness(mesh, weights) in place, from the tets of nonzero
+// weight only (the samples' tets, a small share of the domain's): A's pattern
+// must hold every entry those tets couple, as hessian_energy's two rings do
+// (std::logic_error otherwise); with kLower A holds its lower triangle.
+// The same values as adding the whole weighted stiffness, without building it.
+void add_weighted_stiffness(SparseMatrix& A, const TetMesh& mesh, const std::vector<double>& weights,
+                            double w, Stored stored = Stored::kAll);
+
 // The integrated squared Hessian of Eq. (15): H^T M~_V^-1 H (|V| x |V|,
 // two-ring sparsity), M~_V the vertex masses repeated for the 9 rows of each
 // vertex. Equals gram_matrix(hessian_matrix(mesh), 1 / masses repeated 9

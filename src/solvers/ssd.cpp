@@ -57,14 +57,16 @@ LinearSystem ssd_system(const Problem& p, const SsdOptions& options, Stored stor
     }
     b = beta * gradient_transpose_times(p.mesh, normal_sum);
     std::vector<Vec3>().swap(normal_sum);
-    const SparseMatrix stiffness = weighted_stiffness(p.mesh, count);
-    poll();
-    if (options.gamma > 0)
-      add_to(A, stiffness, beta, lower);
-    else if (lower)
-      A = beta * SparseMatrix(stiffness.triangularView<Eigen::Lower>());
-    else
-      A = beta * stiffness;
+    if (options.gamma > 0) {
+      // Into the Hessian term's two rings, from the samples' tets alone.
+      add_weighted_stiffness(A, p.mesh, count, beta, stored);
+    } else {
+      const SparseMatrix stiffness = weighted_stiffness(p.mesh, count);
+      if (lower)
+        A = beta * SparseMatrix(stiffness.triangularView<Eigen::Lower>());
+      else
+        A = beta * stiffness;
+    }
     poll();
   }
   add_to(A, gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows())), alpha, lower);
