@@ -164,35 +164,33 @@ void add_weighted_stiffness(SparseMatrix& A, const TetMesh& mesh, const std::vec
   const int* outer = A.outerIndexPtr();
   const int* inner = A.innerIndexPtr();
   double* values = A.valuePtr();
-  detail::polled_parallel_for(n, [&](int j) {
-    if (offsets[j] == offsets[j + 1]) return;
-    // Column j's sums per row, in the order of weighted_stiffness (a column
-    // has at most its one-ring's rows).
-    std::pair<int, double> sums[64];
-    int count = 0;
-    for (long long s = offsets[j]; s < offsets[j + 1]; ++s) {
-      const int t = star[static_cast<std::size_t>(s)];
-      const TetGradients g = detail::tet_gradients(mesh, t);
-      const Vec3 wj = weights[t] * g.grad[detail::local_index(mesh.tets[t], j)];
-      for (int i = 0; i < 4; ++i) {
-        const int row = mesh.tets[t][i];
-        if (lower && row < j) continue;
-        int k = 0;
-        while (k < count && sums[k].first != row) ++k;
-        if (k == count) {
-          if (count == 64) throw std::logic_error("add_weighted_stiffness: a ring over 64 vertices");
-          sums[count++] = {row, 0.0};
+  detail::polled_parallel_ranges(n, [&](const tbb::blocked_range<int>& range) {
+    // Column j's sums per row, in the order of weighted_stiffness (its
+    // rows: the vertices of the weighted tets around j, a few dozen).
+    std::vector<std::pair<int, double>> sums;
+    for (int j = range.begin(); j < range.end(); ++j) {
+      sums.clear();
+      for (long long s = offsets[j]; s < offsets[j + 1]; ++s) {
+        const int t = star[static_cast<std::size_t>(s)];
+        const TetGradients g = detail::tet_gradients(mesh, t);
+        const Vec3 wj = weights[t] * g.grad[detail::local_index(mesh.tets[t], j)];
+        for (int i = 0; i < 4; ++i) {
+          const int row = mesh.tets[t][i];
+          if (lower && row < j) continue;
+          std::size_t k = 0;
+          while (k < sums.size() && sums[k].first != row) ++k;
+          if (k == sums.size()) sums.emplace_back(row, 0.0);
+          sums[k].second += g.grad[i].dot(wj);
         }
-        sums[k].second += g.grad[i].dot(wj);
       }
-    }
-    const int* first = inner + outer[j];
-    const int* last = inner + outer[j + 1];
-    for (int k = 0; k < count; ++k) {
-      const int* at = std::lower_bound(first, last, sums[k].first);
-      if (at == last || *at != sums[k].first)
-        throw std::logic_error("add_weighted_stiffness: A's pattern misses an entry");
-      values[at - inner] += w * sums[k].second;
+      const int* first = inner + outer[j];
+      const int* last = inner + outer[j + 1];
+      for (const auto& [row, sum] : sums) {
+        const int* at = std::lower_bound(first, last, row);
+        if (at == last || *at != row)
+          throw std::logic_error("add_weighted_stiffness: A's pattern misses an entry");
+        values[at - inner] += w * sum;
+      }
     }
   });
 }
