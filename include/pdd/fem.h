@@ -56,8 +56,9 @@ SparseMatrix cotangent_laplacian(const TetMesh& mesh);
 
 // G^T W G for a block-diagonal W with one symmetric 3x3 block per tet
 // (weights[t]): the stiffness matrix of the per-tet metric W_t. With
-// W_t = volume_t * I this is the Laplacian; the solvers use it for the
-// gradient terms at the samples (Eqs. (15) and (17), G^T S^T C S G).
+// W_t = volume_t * I this is the Laplacian; the spectral solver uses it for
+// the gradient term at the samples (Eq. (17), G^T S^T C S G; SSD adds Eq.
+// (15)'s in place, add_weighted_stiffness below).
 // weights.size() must equal the number of tets.
 SparseMatrix weighted_stiffness(const TetMesh& mesh, const std::vector<Eigen::Matrix3d>& weights);
 // The same for W_t = weights[t] * I.
