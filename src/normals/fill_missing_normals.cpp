@@ -14,6 +14,8 @@ std::size_t fill_missing_normals(const std::vector<Vec3>& points, std::vector<Ve
   for (std::size_t i = 0; i < normals.size(); ++i)
     if (normals[i].squaredNorm() == 0) missing.push_back(i);
   if (missing.empty()) return 0;
+  if (missing.size() == normals.size())
+    throw std::invalid_argument("fill_missing_normals: every normal is zero (none to turn by)");
   // The jet fit runs on the missing points' neighbourhoods only (a scan with
   // a few zero normals costs a few fits), each with its own neighbours inside.
   const detail::NearestNeighbors tree(points);
@@ -35,8 +37,6 @@ std::size_t fill_missing_normals(const std::vector<Vec3>& points, std::vector<Ve
       given_points.push_back(points[i]);
       given_normals.push_back(normals[i]);
     }
-  if (given_points.empty())
-    throw std::invalid_argument("fill_missing_normals: every normal is zero (none to turn by)");
   const detail::NearestNeighbors given(given_points);
   std::vector<Vec3> filled(missing.size());
   for (std::size_t m = 0; m < missing.size(); ++m) {
