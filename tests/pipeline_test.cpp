@@ -582,6 +582,17 @@ TEST(Pipeline, EverySolveButTheFirstRunsOnAnOptimizedRefinedDomain) {
   EXPECT_EQ(r.iterations.back().inserted_points, 0);
 }
 
+// The isofacets against the sizing field as an iteration recorded them.
+IsofacetAreaStats measured_sizing(const IterationStats& s) {
+  IsofacetAreaStats a;
+  a.count = s.crossing_tets;
+  a.mean_ratio = s.mean_area_ratio;
+  a.above_4 = s.above_4;
+  a.away = s.away_from_data;
+  a.above_4_away = s.above_4_away_from_data;
+  return a;
+}
+
 TEST(Pipeline, TheStatisticsShowWhyTheLoopRefinedAndWhyItStopped) {
   // Each iteration records its isofacets against the sizing field: every one
   // that was refined had not met it (mean area ratio over 1, or too many
@@ -591,13 +602,7 @@ TEST(Pipeline, TheStatisticsShowWhyTheLoopRefinedAndWhyItStopped) {
   const ReconstructOptions o = fast_options(SolverKind::kSsd, 0.15);
   const Result r = reconstruct(input, o);
   ASSERT_GE(r.iterations.size(), 3u);
-  const auto met = [](const IterationStats& s) {
-    IsofacetAreaStats a;
-    a.count = s.crossing_tets;
-    a.mean_ratio = s.mean_area_ratio;
-    a.above_4 = s.above_4;
-    return sizing_met(a);
-  };
+  const auto met = [](const IterationStats& s) { return sizing_met(measured_sizing(s)); };
   for (std::size_t i = 0; i + 1 < r.iterations.size(); ++i) {
     const IterationStats& s = r.iterations[i];
     EXPECT_GT(s.crossing_tets, 0) << "iteration " << s.iteration;
@@ -738,6 +743,30 @@ TEST(Pipeline, ATrimmedHemisphereIsOneOpenPieceNearTheSamples) {
   // The trim's rim is counted, but is no surprise to report.
   EXPECT_EQ(r.iterations.back().boundary_edges, surface_topology(r.mesh).boundary_edges);
   EXPECT_EQ(open_surface_note(r), "");
+}
+
+TEST(Pipeline, TheLargeFacetsAwayFromTheDataDoNotKeepTheLoopGoing) {
+  // The closed run of a hemisphere invents its lower half: there the targets
+  // are coarsened, the facets counted apart, and their 4x tail ignored by the
+  // stop (refine.h, sizing_met).
+  const PointSet input = upper_hemisphere();
+  const Result r = reconstruct(input, fast_options(SolverKind::kSsd, 0.08));
+  const double band = 12 * average_spacing(input);
+  for (const IterationStats& s : r.iterations) {
+    EXPECT_LE(s.away_from_data, s.crossing_tets) << "iteration " << s.iteration;
+    EXPECT_LE(s.above_4_away_from_data, std::min(s.above_4, s.away_from_data))
+        << "iteration " << s.iteration;
+  }
+  const IterationStats& last = r.iterations.back();
+  // The output's vertices more than a band below the rim are away.
+  std::size_t below = 0;
+  for (const Vec3& v : r.mesh.vertices) below += v.z() < -1.2 * band;
+  ASSERT_GT(below, 0u);
+  EXPECT_GT(last.away_from_data, 0);
+  EXPECT_LT(last.away_from_data, last.crossing_tets / 2);
+  const IterationStats& before = r.iterations[r.iterations.size() - 2];
+  EXPECT_TRUE(sizing_met(measured_sizing(last)) || before.trisected + before.bisected <
+                                   0.03 * static_cast<double>(before.crossing_tets));
 }
 
 TEST(Pipeline, AnOpenSheetThatReachesTheDomainsBoundaryIsReported) {

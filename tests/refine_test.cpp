@@ -263,7 +263,8 @@ TEST(Sizing, CoarserAwayFromTheData) {
       input.normals.push_back(sphere.normals[i]);
     }
   const double target = 0.01;
-  const auto sizing = coarser_away_from_data(uniform_sizing(target), input);
+  const std::shared_ptr<const SizingField> sizing =
+      coarser_away_from_data(uniform_sizing(target), input);
   const double band = 12 * average_spacing(input);
   auto facet_at = [](const Vec3& centroid) {
     Isofacet a{};
@@ -280,10 +281,43 @@ TEST(Sizing, CoarserAwayFromTheData) {
   EXPECT_DOUBLE_EQ(s[1], target);
   EXPECT_NEAR(s[2], 2.25 * target, 0.3 * target);  // (d / b)^2, d within a spacing of 1.5 b
   EXPECT_DOUBLE_EQ(s[3], 4 * target);
+  // The facets beyond the band are marked away from the data, through a
+  // scaled field too; the same targets.
+  std::vector<char> away;
+  EXPECT_EQ(scaled_sizing(sizing, 2)->target_areas_marking_away(Domain(), facets, away),
+            (std::vector<double>{2 * s[0], 2 * s[1], 2 * s[2], 2 * s[3]}));
+  EXPECT_EQ(away, (std::vector<char>{0, 0, 1, 1}));
   DataDistanceOptions off;
   off.max_factor = 1;
-  EXPECT_EQ(coarser_away_from_data(uniform_sizing(target), input, off)->target_areas(Domain(), facets),
+  const auto uncoarsened = coarser_away_from_data(uniform_sizing(target), input, off);
+  EXPECT_EQ(uncoarsened->target_areas_marking_away(Domain(), facets, away),
             std::vector<double>(4, target));
+  EXPECT_EQ(away, std::vector<char>(4, 0));
+}
+
+TEST(Sizing, MetIgnoresTheLargeFacetsAwayFromTheData) {
+  // 1000 facets, their mean ratio under 1, 3 of them at 5x their target:
+  // near the data they fail the 0.2 % bar (2 of 1000); away from the data
+  // they do not count.
+  std::vector<Isofacet> facets(1000);
+  std::vector<double> targets(1000, 1.0);
+  for (Isofacet& f : facets) f.area = 0.5;
+  for (int i = 0; i < 3; ++i) facets[i].area = 5;
+  std::vector<char> away(1000, 0);
+  const IsofacetAreaStats near = isofacet_area_stats(facets, targets, away);
+  EXPECT_EQ(near.above_4, 3);
+  EXPECT_EQ(near.above_4_away, 0);
+  EXPECT_LT(near.mean_ratio, 1.0);
+  EXPECT_FALSE(sizing_met(near));  // 3 > 0.2 % of 1000
+  for (int i = 0; i < 3; ++i) away[i] = 1;
+  const IsofacetAreaStats far = isofacet_area_stats(facets, targets, away);
+  EXPECT_EQ(far.above_4, 3);
+  EXPECT_EQ(far.away, 3);
+  EXPECT_EQ(far.above_4_away, 3);
+  EXPECT_TRUE(sizing_met(far));
+  // Away facets still count in the mean: over 1 is not met.
+  for (int i = 3; i < 300; ++i) facets[i].area = 3;
+  EXPECT_FALSE(sizing_met(isofacet_area_stats(facets, targets, away)));
 }
 
 TEST(Sizing, RejectsBadParameters) {

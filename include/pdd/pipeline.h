@@ -156,11 +156,14 @@ struct IterationStats {
   int trisected = 0, bisected = 0, inserted_points = 0;
   // The isofacets against the sizing field after the solve, which the loop
   // stops on (refine.h, sizing_met): their count (the tets f = 0 crosses), the
-  // mean of their area over their target, and how many are 4x their target or
-  // more. Progressive strategy only.
+  // mean of their area over their target, how many are 4x their target or
+  // more, and how many of each lie away from the data (the sizing's coarsened
+  // targets), where the 4x ones do not count. Progressive strategy only.
   int crossing_tets = 0;
   double mean_area_ratio = 0;
   int above_4 = 0;
+  int away_from_data = 0;
+  int above_4_away_from_data = 0;
   double mean_min_angle = 0;     // of the isosurface's triangles, degrees
   double fraction_below_30 = 0;  // of the isosurface's triangles
   double seconds_solve = 0, seconds_optimize = 0, seconds_refine = 0, seconds_contour = 0;

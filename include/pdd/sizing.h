@@ -18,6 +18,12 @@ class SizingField {
   // s(f_t) for each isofacet, in the order given.
   virtual std::vector<double> target_areas(const Domain& domain,
                                            const std::vector<Isofacet>& facets) const = 0;
+  // The same, and away[i] = 1 where facet i lies away from the data, its
+  // target coarsened for want of input nearby (coarser_away_from_data): there
+  // the solver invents the surface. By default no facet is away.
+  virtual std::vector<double> target_areas_marking_away(const Domain& domain,
+                                                       const std::vector<Isofacet>& facets,
+                                                       std::vector<char>& away) const;
 };
 
 // Area of the equilateral triangle of edge h: sqrt(3)/4 h^2.

@@ -70,15 +70,24 @@ class TranslatedSizing : public SizingField {
       : inner_(std::move(inner)), centre_(centre) {}
   std::vector<double> target_areas(const Domain& domain,
                                    const std::vector<Isofacet>& facets) const override {
-    std::vector<Isofacet> moved = facets;
-    for (Isofacet& f : moved) {
-      for (Vec3& c : f.corners) c += centre_;
-      f.centroid += centre_;
-    }
-    return inner_->target_areas(domain, moved);
+    return inner_->target_areas(domain, moved(facets));
+  }
+  std::vector<double> target_areas_marking_away(const Domain& domain,
+                                                const std::vector<Isofacet>& facets,
+                                                std::vector<char>& away) const override {
+    return inner_->target_areas_marking_away(domain, moved(facets), away);
   }
 
  private:
+  std::vector<Isofacet> moved(const std::vector<Isofacet>& facets) const {
+    std::vector<Isofacet> out = facets;
+    for (Isofacet& f : out) {
+      for (Vec3& c : f.corners) c += centre_;
+      f.centroid += centre_;
+    }
+    return out;
+  }
+
   std::shared_ptr<const SizingField> inner_;
   Vec3 centre_;
 };
@@ -360,6 +369,8 @@ class Run {
     stats.crossing_tets = measured.count;
     stats.mean_area_ratio = measured.mean_ratio;
     stats.above_4 = measured.above_4;
+    stats.away_from_data = measured.away;
+    stats.above_4_away_from_data = measured.above_4_away;
   }
 
   // The result, with `stats` (of the solve whose contour is contour_) as its

@@ -87,6 +87,8 @@ std::string statistics_json(const Result& result, const ReconstructOptions& opti
         << ", \"bisected\": " << s.bisected << ", \"inserted_points\": " << s.inserted_points
         << ", \"crossing_tets\": " << s.crossing_tets
         << ", \"mean_area_ratio\": " << number(s.mean_area_ratio) << ", \"above_4\": " << s.above_4
+        << ", \"away_from_data\": " << s.away_from_data
+        << ", \"above_4_away_from_data\": " << s.above_4_away_from_data
         << ", \"mean_min_angle\": " << number(s.mean_min_angle)
         << ", \"fraction_below_30\": " << number(s.fraction_below_30)
         << ", \"seconds\": {\"solve\": " << number(s.seconds_solve)

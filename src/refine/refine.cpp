@@ -20,16 +20,20 @@ int refinement_rule(const Isofacet& facet, double ratio, double draw) {
 }
 
 IsofacetAreaStats isofacet_area_stats(const std::vector<Isofacet>& facets,
-                                      const std::vector<double>& targets) {
+                                      const std::vector<double>& targets,
+                                      const std::vector<char>& away) {
   IsofacetAreaStats s;
   s.count = static_cast<int>(facets.size());
   for (std::size_t i = 0; i < facets.size(); ++i) {
     const double ratio = facets[i].area / targets[i];
+    const bool far = !away.empty() && away[i];
     s.mean_area += facets[i].area;
     s.max_area = std::max(s.max_area, facets[i].area);
     s.mean_ratio += ratio;
     s.max_ratio = std::max(s.max_ratio, ratio);
-    if (ratio >= 4) ++s.above_4;
+    s.above_4 += ratio >= 4;
+    s.away += far;
+    s.above_4_away += far && ratio >= 4;
   }
   if (s.count > 0) {
     s.mean_area /= s.count;
@@ -40,12 +44,14 @@ IsofacetAreaStats isofacet_area_stats(const std::vector<Isofacet>& facets,
 
 IsofacetAreaStats isofacet_area_stats(const Domain& domain, const SizingField& sizing) {
   const std::vector<Isofacet> facets = isofacets(domain.mesh(), domain.f());
-  return isofacet_area_stats(facets, sizing.target_areas(domain, facets));
+  std::vector<char> away;
+  const std::vector<double> targets = sizing.target_areas_marking_away(domain, facets, away);
+  return isofacet_area_stats(facets, targets, away);
 }
 
 bool sizing_met(const IsofacetAreaStats& stats, double max_fraction_above_4) {
   return stats.count > 0 && stats.mean_ratio <= 1.0 &&
-         stats.above_4 <= max_fraction_above_4 * stats.count;
+         stats.above_4 - stats.above_4_away <= max_fraction_above_4 * (stats.count - stats.away);
 }
 
 namespace {

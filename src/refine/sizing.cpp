@@ -19,6 +19,14 @@
 
 #include "common/cancellation.h"
 namespace pdd {
+
+std::vector<double> SizingField::target_areas_marking_away(const Domain& domain,
+                                                           const std::vector<Isofacet>& facets,
+                                                           std::vector<char>& away) const {
+  away.assign(facets.size(), 0);
+  return target_areas(domain, facets);
+}
+
 namespace {
 
 class UniformSizing : public SizingField {
@@ -65,11 +73,19 @@ class DataDistanceSizing : public SizingField {
 
   std::vector<double> target_areas(const Domain& domain,
                                    const std::vector<Isofacet>& facets) const override {
-    std::vector<double> s = inner_->target_areas(domain, facets);
+    std::vector<char> away;
+    return target_areas_marking_away(domain, facets, away);
+  }
+
+  std::vector<double> target_areas_marking_away(const Domain& domain,
+                                                const std::vector<Isofacet>& facets,
+                                                std::vector<char>& away) const override {
+    std::vector<double> s = inner_->target_areas_marking_away(domain, facets, away);
     detail::polled_parallel_for(facets.size(), [&](std::size_t i) {
       const Vec3& c = facets[i].centroid;
       const double d = (points_[neighbors_.query(c, 1).front()] - c).norm() / band_;
       s[i] *= std::clamp(d * d, 1.0, options_.max_factor);
+      if (d > 1 && options_.max_factor > 1) away[i] = 1;
     });
     return s;
   }
@@ -204,6 +220,14 @@ class ScaledSizing final : public SizingField {
   std::vector<double> target_areas(const Domain& domain,
                                    const std::vector<Isofacet>& facets) const override {
     std::vector<double> s = inner_->target_areas(domain, facets);
+    for (double& a : s) a *= factor_;
+    return s;
+  }
+
+  std::vector<double> target_areas_marking_away(const Domain& domain,
+                                                const std::vector<Isofacet>& facets,
+                                                std::vector<char>& away) const override {
+    std::vector<double> s = inner_->target_areas_marking_away(domain, facets, away);
     for (double& a : s) a *= factor_;
     return s;
   }
