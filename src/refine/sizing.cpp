@@ -219,9 +219,8 @@ class ScaledSizing final : public SizingField {
       : inner_(std::move(inner)), factor_(factor) {}
   std::vector<double> target_areas(const Domain& domain,
                                    const std::vector<Isofacet>& facets) const override {
-    std::vector<double> s = inner_->target_areas(domain, facets);
-    for (double& a : s) a *= factor_;
-    return s;
+    std::vector<char> away;
+    return target_areas_marking_away(domain, facets, away);
   }
 
   std::vector<double> target_areas_marking_away(const Domain& domain,
