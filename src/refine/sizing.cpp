@@ -29,6 +29,17 @@ std::vector<double> SizingField::target_areas_marking_away(const Domain& domain,
 
 namespace {
 
+// A field computed with its marks (SizingField::target_areas_marking_away);
+// its plain targets drop them.
+class MarkingSizing : public SizingField {
+ public:
+  std::vector<double> target_areas(const Domain& domain,
+                                   const std::vector<Isofacet>& facets) const final {
+    std::vector<char> away;
+    return target_areas_marking_away(domain, facets, away);
+  }
+};
+
 class UniformSizing : public SizingField {
  public:
   explicit UniformSizing(double area) : area_(area) {}
@@ -61,7 +72,7 @@ class UserSizing : public SizingField {
 };
 
 // The inner target, scaled up with the squared distance to the data.
-class DataDistanceSizing : public SizingField {
+class DataDistanceSizing : public MarkingSizing {
  public:
   DataDistanceSizing(std::shared_ptr<const SizingField> inner, const PointSet& input,
                      const DataDistanceOptions& options)
@@ -70,12 +81,6 @@ class DataDistanceSizing : public SizingField {
         band_(options.band_spacings * average_spacing(input)),
         points_(input.points),
         neighbors_(points_) {}
-
-  std::vector<double> target_areas(const Domain& domain,
-                                   const std::vector<Isofacet>& facets) const override {
-    std::vector<char> away;
-    return target_areas_marking_away(domain, facets, away);
-  }
 
   std::vector<double> target_areas_marking_away(const Domain& domain,
                                                 const std::vector<Isofacet>& facets,
@@ -213,16 +218,10 @@ std::unique_ptr<SizingField> uniform_sizing(double target_area) {
 
 namespace {
 
-class ScaledSizing final : public SizingField {
+class ScaledSizing final : public MarkingSizing {
  public:
   ScaledSizing(std::shared_ptr<const SizingField> inner, double factor)
       : inner_(std::move(inner)), factor_(factor) {}
-  std::vector<double> target_areas(const Domain& domain,
-                                   const std::vector<Isofacet>& facets) const override {
-    std::vector<char> away;
-    return target_areas_marking_away(domain, facets, away);
-  }
-
   std::vector<double> target_areas_marking_away(const Domain& domain,
                                                 const std::vector<Isofacet>& facets,
                                                 std::vector<char>& away) const override {
