@@ -131,14 +131,14 @@ TEST(Cleanup, LeavesAFoldAlone) {
 
 // A cap (c just off the middle of ab) folded 45 degrees against its
 // neighbour: not flat, but flipping ab to cd moves the surface by less than a
-// tenth of ab, so the flip is made (and not with max_flip_deviation 0).
+// tenth of ab, so the flip is made (and not with max_deviation 0).
 TEST(Cleanup, FlipsACapOnACreaseWhenThatBarelyMovesTheSurface) {
   TriangleMesh m;
   m.vertices = {Vec3(0, 0, 0), Vec3(4, 0, 0), Vec3(2, 0.1, 0), Vec3(2, -2, 2)};
   m.faces = {{0, 1, 2}, {1, 0, 3}};
   TriangleMesh kept = m;
   CleanupOptions strict;
-  strict.max_flip_deviation = 0;
+  strict.max_deviation = 0;
   EXPECT_EQ(cleanup_isosurface(kept, strict).flips, 0);
   EXPECT_EQ(cleanup_isosurface(m).flips, 1);
   EXPECT_GT(triangle_quality(m).min_angle, 10 * triangle_quality(kept).min_angle);
@@ -146,20 +146,46 @@ TEST(Cleanup, FlipsACapOnACreaseWhenThatBarelyMovesTheSurface) {
     EXPECT_TRUE(std::count(f.begin(), f.end(), 2) && std::count(f.begin(), f.end(), 3));
 
   CleanupOptions bad;
-  bad.max_flip_deviation = -0.1;
+  bad.max_deviation = -0.1;
   EXPECT_THROW(cleanup_isosurface(m, bad), std::invalid_argument);
 }
 
-// A needle (u, v, c) whose far corner c has valence three inside the tall
-// triangle (u, v, x): collapsing uv breaks the link condition (x is a third
-// common neighbour), so c is removed and its three triangles become one. The
-// triangles beyond uv are folded up; vx and xu are on the border, where no
-// flip reaches c.
-TEST(Cleanup, RemovesAValenceThreeCornerThatBlocksANeedlesCollapse) {
+// No relaxation, a 2-degree dihedral bound and no small moves past it.
+CleanupOptions collapses_within_2_degrees() {
+  CleanupOptions options;
+  options.relax_rounds = 0;
+  options.max_deviation = 0;
+  options.max_dihedral_degrees = 2;
+  return options;
+}
+
+// A needle (u, v, c) = vertices 0, 1, 2 with u's other triangles rising to
+// (0, 0.6, lift) and v's tilted 20 degrees down.
+TriangleMesh needle_fan(double lift) {
   TriangleMesh m;
-  const Vec3 u(0, 0, 0), v(0.1, 0, 0), c(0.05, 1, 0), x(0.05, 3, 0);
-  m.vertices = {u, v, c, x, Vec3(0.05, -1, 2), Vec3(1, -0.5, 2), Vec3(-1, -0.5, 2)};
+  m.vertices = {Vec3(0, 0.1, 0),         Vec3(0, 0, 0),       Vec3(0.5, 0.05, 0),
+                Vec3(0, 0.6, lift),      Vec3(-0.5, 0.05, 0), Vec3(0.3, -0.4, -0.146),
+                Vec3(-0.3, -0.4, -0.146)};
+  m.faces = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 1}, {1, 4, 6}, {1, 6, 5}, {1, 5, 2}};
+  return m;
+}
+
+// A needle (u, v, c) = vertices 0, 1, 2, u and v 0.1 apart, whose far corner c
+// has valence three inside the tall triangle (u, v, x = (0.05, 3, 0)); the
+// triangles beyond uv are folded up, vx and xu are on the border.
+TriangleMesh needle_at_valence_three_corner(const Vec3& c) {
+  TriangleMesh m;
+  m.vertices = {Vec3(0, 0, 0),    Vec3(0.1, 0, 0),  c, Vec3(0.05, 3, 0), Vec3(0.05, -1, 2),
+                Vec3(1, -0.5, 2), Vec3(-1, -0.5, 2)};
   m.faces = {{0, 1, 2}, {1, 3, 2}, {3, 0, 2}, {1, 0, 4}, {1, 4, 5}, {0, 6, 4}};
+  return m;
+}
+
+// Collapsing uv breaks the link condition (x is a third common neighbour),
+// so c is removed and its three triangles become one; no flip reaches c.
+TEST(Cleanup, RemovesAValenceThreeCornerThatBlocksANeedlesCollapse) {
+  const Vec3 c(0.05, 1, 0);
+  TriangleMesh m = needle_at_valence_three_corner(c);
   CleanupOptions options;
   options.relax_rounds = 0;
   const CleanupReport report = cleanup_isosurface(m, options);
@@ -177,27 +203,58 @@ TEST(Cleanup, RemovesAValenceThreeCornerThatBlocksANeedlesCollapse) {
 // midpoint of uv turns them too far, but moving u onto v turns nothing: the
 // edge is collapsed to v's end.
 TEST(Cleanup, CollapsesANeedleToTheEndThatKeepsItsNeighboursWhenTheMidpointWouldTurnThem) {
-  const Vec3 u(0, 0.1, 0), v(0, 0, 0);
-  TriangleMesh m;
-  m.vertices = {u,
-                v,
-                Vec3(0.5, 0.05, 0),
-                Vec3(0, 0.6, 0),
-                Vec3(-0.5, 0.05, 0),
-                Vec3(0.3, -0.4, -0.146),
-                Vec3(-0.3, -0.4, -0.146)};
-  m.faces = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 1}, {1, 4, 6}, {1, 6, 5}, {1, 5, 2}};
-  CleanupOptions options;
-  options.relax_rounds = 0;
-  options.max_flip_deviation = 0;
-  options.max_dihedral_degrees = 2;
-  const CleanupReport report = cleanup_isosurface(m, options);
+  TriangleMesh m = needle_fan(0);
+  const Vec3 u = m.vertices[0], v = m.vertices[1];
+  const CleanupReport report = cleanup_isosurface(m, collapses_within_2_degrees());
   EXPECT_EQ(report.collapses, 1);
   EXPECT_EQ(report.flips, 0);
   EXPECT_EQ(m.faces.size(), 5u);
   EXPECT_EQ(std::count(m.vertices.begin(), m.vertices.end(), v), 1);
   EXPECT_EQ(std::count(m.vertices.begin(), m.vertices.end(), u), 0);
   EXPECT_EQ(std::count(m.vertices.begin(), m.vertices.end(), 0.5 * (u + v)), 0);
+  EXPECT_EQ(surface_topology(m).euler_characteristic, 1);
+}
+
+// The same needle with u's triangles tilted up: under a 2-degree bound no
+// collapse keeps every neighbour, but the midpoint moves u and v by 0.05,
+// under 0.15 of the needle's longest edge (0.5), and folds nothing: the
+// collapse is made, and not with max_deviation 0.
+TEST(Cleanup, CollapsesANeedleWhoseEndsMoveLittleHoweverItsNeighboursTurn) {
+  TriangleMesh m = needle_fan(0.3);
+  const Vec3 u = m.vertices[0], v = m.vertices[1];
+  CleanupOptions options = collapses_within_2_degrees();
+  TriangleMesh kept = m;
+  EXPECT_EQ(cleanup_isosurface(kept, options).collapses, 0);
+  EXPECT_EQ(kept.vertices.size(), 7u);
+
+  options.max_deviation = 0.15;
+  EXPECT_EQ(cleanup_isosurface(m, options).collapses, 1);
+  EXPECT_EQ(m.vertices.size(), 6u);
+  EXPECT_EQ(std::count(m.vertices.begin(), m.vertices.end(), 0.5 * (u + v)), 1);
+  const SurfaceTopology topology = surface_topology(m);
+  EXPECT_TRUE(topology.manifold);
+  EXPECT_EQ(topology.euler_characteristic, 1);
+}
+
+// The valence-three corner c of the needle (u, v, c) lifted 0.1 off the
+// triangle (u, v, x) that its removal leaves: its thin triangles (v, x, c)
+// and (x, u, c) turn about 70 degrees from it, over the dihedral bound, but c
+// lies within 0.15 of that triangle's longest edge (3) from it: removed by
+// default, kept with max_deviation 0.
+TEST(Cleanup, RemovesALowValenceThreeSpikeHoweverItsTrianglesTurn) {
+  const Vec3 c(0.05, 1, 0.1);
+  TriangleMesh m = needle_at_valence_three_corner(c);
+  CleanupOptions options;
+  options.relax_rounds = 0;
+  options.max_deviation = 0;
+  TriangleMesh kept = m;
+  cleanup_isosurface(kept, options);
+  EXPECT_EQ(std::count(kept.vertices.begin(), kept.vertices.end(), c), 1);
+
+  options.max_deviation = CleanupOptions().max_deviation;
+  EXPECT_EQ(cleanup_isosurface(m, options).collapses, 1);
+  EXPECT_EQ(std::count(m.vertices.begin(), m.vertices.end(), c), 0);
+  EXPECT_EQ(m.faces.size(), 4u);
   EXPECT_EQ(surface_topology(m).euler_characteristic, 1);
 }
 

@@ -114,8 +114,10 @@ int cut_triangle_waists(TriangleMesh& mesh);
 
 struct CleanupOptions {
   double max_dihedral_degrees = 30;  // only where neighbouring triangles turn by at most this
-  double max_flip_deviation = 0.1;   // ... or, for flips, where the surface moves by at most
-                                     // this fraction of the flipped edge's length (caps)
+  double max_deviation = 0.15;       // ... or where the surface moves by at most this fraction of
+                                     // the edge: a flip's (caps), a needle's longest (collapses
+                                     // to the midpoint), the triangle left by a valence-three
+                                     // corner's removal (its longest)
   double needle_angle_degrees = 20;  // triangles with a smaller angle and a shortest edge at
                                      // most half the next are needles: that edge is collapsed
   int relax_rounds = 3;  // rounds of vertex moves toward their neighbours' centroid, then
@@ -134,10 +136,11 @@ struct CleanupReport {
 // bound, only if the flip barely moves the surface), then collapses of the
 // shortest edge of needles to its midpoint or an end (kept only if the link
 // condition holds and no other triangle turns by more than the dihedral
-// bound; a valence-three corner that breaks the link condition is removed
-// instead), then flips again; then `relax_rounds` rounds of vertex moves (each
-// inner vertex halfway to its neighbours' centroid, on a quadric fitted to
-// them, only where that raises its smallest angle), collapses and flips.
+// bound or the collapse barely moves the surface; a valence-three corner that
+// breaks the link condition is removed instead, on the same terms), then flips
+// again; then `relax_rounds` rounds of vertex moves (each inner vertex
+// halfway to its neighbours' centroid, on a quadric fitted to them, only where
+// that raises its smallest angle), collapses and flips.
 // Orientation, manifoldness and the topology are kept; removed vertices are
 // dropped and the rest keep their order. Throws std::invalid_argument if the
 // mesh is not an oriented manifold or an option is out of range.

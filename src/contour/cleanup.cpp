@@ -101,9 +101,11 @@ class Cleaner {
 
   // Needles (shortest_edge_if_needle) lose their shortest edge, collapsed to
   // its midpoint, or else to one of its ends, when the link condition holds
-  // and no remaining triangle turns by more than max_dihedral_degrees. Where
-  // the link condition fails because a triangle's far corner has valence
-  // three, that corner is removed instead (its three triangles become one).
+  // and no remaining triangle turns by more than max_dihedral_degrees (or,
+  // to the midpoint, none folds and the ends move by at most max_deviation of
+  // the needle's longest edge). Where the link condition fails because a
+  // triangle's far corner has valence three, that corner is removed instead
+  // (its three triangles become one).
   int collapse_needles() {
     int collapses = 0;
     for (Face f : std::vector<Face>(m_.faces().begin(), m_.faces().end())) {
@@ -128,6 +130,9 @@ class Cleaner {
         target = a;
       else if (collapse_keeps_orientation(h, b))
         target = b;
+      else if (0.5 * (a - b).norm() <= options_.max_deviation * longest_edge(m_.face(h)) &&
+               collapse_keeps_orientation(h, midpoint, /*min_cosine=*/0))
+        target = midpoint;  // the ends move by less than the bound: no feature to keep
       else
         continue;
       const Vertex kept = CGAL::Euler::collapse_edge(m_.edge(h), m_);
@@ -218,7 +223,7 @@ class Cleaner {
     if (m_.halfedge(c, d).is_valid()) return false;                // would not stay manifold
     const Vec3 n1 = unit_normal(pa, pb, pc), n2 = unit_normal(pb, pa, pd);
     if (n1.dot(n2) < min_cosine_ &&
-        flip_deviation(pa, pb, pc, pd) > options_.max_flip_deviation * (pb - pa).norm())
+        flip_deviation(pa, pb, pc, pd) > options_.max_deviation * (pb - pa).norm())
       return false;  // neither nearly flat nor a flip that barely moves the surface
     // The new triangles (c, a, d) and (d, b, c) must face the same way.
     const Vec3 n = n1 + n2;
@@ -239,8 +244,9 @@ class Cleaner {
   }
 
   // Removes v if it is an inner vertex of valence three whose one remaining
-  // triangle turns from none of its three by more than max_dihedral_degrees
-  // (and is not already a face, as in a tetrahedron).
+  // triangle turns from none of its three by more than max_dihedral_degrees,
+  // or lies within max_deviation of its longest edge from v (and is not
+  // already a face, as in a tetrahedron).
   bool remove_valence_three(Vertex v) {
     if (m_.is_border(v) || m_.degree(v) != 3) return false;
     std::array<Vertex, 3> ring;
@@ -262,8 +268,13 @@ class Cleaner {
     }
     Vec3 n = unit_normal(position(ring[0]), position(ring[1]), position(ring[2]));
     if (n.dot(normals[0] + normals[1] + normals[2]) < 0) n = -n;
+    // A corner over the new triangle by at most max_deviation of its longest
+    // edge is removed however its triangles turn (a small spike, no feature).
+    const Vec3 p0 = position(ring[0]), p1 = position(ring[1]), p2 = position(ring[2]);
+    const double longest = std::max({(p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
+    const bool low = std::abs((position(v) - p0).dot(n)) <= options_.max_deviation * longest;
     for (const Vec3& m : normals)
-      if (n.dot(m) < min_cosine_) return false;
+      if (!low && n.dot(m) < min_cosine_) return false;
     CGAL::Euler::remove_center_vertex(m_.halfedge(v), m_);
     return true;
   }
@@ -287,9 +298,20 @@ class Cleaner {
                                                                    : Mesh::null_halfedge();
   }
 
+  double longest_edge(Face f) const {
+    double longest = 0;
+    for (Halfedge k : m_.halfedges_around_face(m_.halfedge(f)))
+      longest = std::max(longest, (position(m_.target(k)) - position(m_.source(k))).norm());
+    return longest;
+  }
+
   // Every triangle around the two ends of h, but the two that vanish, keeps
-  // its normal within max_dihedral_degrees when both ends move to `target`.
+  // its normal within max_dihedral_degrees (or `min_cosine`) when both ends
+  // move to `target`.
   bool collapse_keeps_orientation(Halfedge h, const Vec3& target) const {
+    return collapse_keeps_orientation(h, target, min_cosine_);
+  }
+  bool collapse_keeps_orientation(Halfedge h, const Vec3& target, double min_cosine) const {
     const Face gone1 = m_.face(h), gone2 = m_.face(m_.opposite(h));
     for (Vertex end : {m_.source(h), m_.target(h)})
       for (Halfedge around : m_.halfedges_around_target(m_.halfedge(end))) {
@@ -304,7 +326,7 @@ class Cleaner {
         }
         const Vec3 n0 = unit_normal(before[0], before[1], before[2]);
         const Vec3 n1 = unit_normal(after[0], after[1], after[2]);
-        if (n0.dot(n1) < min_cosine_) return false;
+        if (n0.dot(n1) < min_cosine) return false;
       }
     return true;
   }
@@ -321,9 +343,9 @@ CleanupReport cleanup_isosurface(TriangleMesh& mesh, const CleanupOptions& optio
     throw std::invalid_argument(
         "cleanup_isosurface: the dihedral bound must be in [0, 90) degrees, got " +
         std::to_string(options.max_dihedral_degrees));
-  if (!(options.max_flip_deviation >= 0))
-    throw std::invalid_argument("cleanup_isosurface: max_flip_deviation must be >= 0, got " +
-                                std::to_string(options.max_flip_deviation));
+  if (!(options.max_deviation >= 0))
+    throw std::invalid_argument("cleanup_isosurface: max_deviation must be >= 0, got " +
+                                std::to_string(options.max_deviation));
   if (options.relax_rounds < 0)
     throw std::invalid_argument("cleanup_isosurface: relax_rounds must be >= 0, got " +
                                 std::to_string(options.relax_rounds));
