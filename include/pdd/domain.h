@@ -129,7 +129,7 @@ class Domain {
   Domain moved(const std::vector<Vec3>& new_positions) const;
   // The same with f at the new positions given (one value per vertex) by a
   // caller that has located them already.
-  Domain moved(const std::vector<Vec3>& new_positions, std::vector<double> f) const;
+  Domain moved(std::vector<Vec3> new_positions, std::vector<double> f) const;
 
   // Frees the Delaunay triangulation behind point location, insertion and the
   // moves (about 500 bytes per vertex; the vertices, tets, neighbours and f

@@ -179,7 +179,7 @@ Domain Domain::moved(const std::vector<Vec3>& new_positions) const {
   return moved(new_positions, std::move(f));
 }
 
-Domain Domain::moved(const std::vector<Vec3>& new_positions, std::vector<double> f) const {
+Domain Domain::moved(std::vector<Vec3> new_positions, std::vector<double> f) const {
   const Impl& d = *impl_;
   const std::size_t n = num_vertices();
   if (new_positions.size() != n || f.size() != n)
@@ -194,7 +194,7 @@ Domain Domain::moved(const std::vector<Vec3>& new_positions, std::vector<double>
   detail::DelaunayArrays built = detail::concurrent_delaunay(new_positions);
   if (built.vertices != n)
     throw std::invalid_argument("Domain::move_vertices: two vertices would coincide");
-  o.mesh.vertices = new_positions;
+  o.mesh.vertices = std::move(new_positions);
   o.mesh.tets = std::move(built.tets);
   o.neighbors = std::move(built.neighbors);
   o.released_vertex_cells = std::move(built.vertex_cells);

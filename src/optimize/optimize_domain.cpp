@@ -230,11 +230,10 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
   double alpha = 1;
   double energy_change = 0;
   for (;;) {
-    const Eigen::VectorXd x = x0 + alpha * step;
     std::vector<Vec3> positions(n);
     std::vector<char> moving(n);
     for (Eigen::Index v = 0; v < n; ++v) {
-      positions[v] = x.segment<3>(3 * v);
+      positions[v] = x0.segment<3>(3 * v) + alpha * step.segment<3>(3 * v);
       moving[v] = !step.segment<3>(3 * v).isZero(0);
     }
     std::vector<Location> located;
@@ -261,14 +260,18 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
     energy.reset();
     std::vector<double> carried = carried_values(domain, moving, located);
     // The old triangulation is not needed to build the new one: freed first
-    // (the round's peak of memory), restored only if moves are sent back.
+    // (the round's peak of memory), restored only if moves are sent back;
+    // so are the locations, and the positions go to the new domain.
     domain.release_triangulation();
-    Domain moved = domain.moved(positions, std::move(carried));
+    std::vector<Location>().swap(located);
+    Domain moved = domain.moved(std::move(positions), std::move(carried));
     detail::poll();
     if (send_back(collapsed_vertices(moved, moving))) continue;
+    const std::vector<Vec3>& moved_to = moved.vertices();
     for (Eigen::Index v = 0; v < n; ++v)
       report.max_displacement =
-          std::max(report.max_displacement, (x - x0).segment<3>(3 * v).norm() / report.diameter);
+          std::max(report.max_displacement,
+                   (moved_to[v] - x0.segment<3>(3 * v)).norm() / report.diameter);
     domain = std::move(moved);
     break;
   }

@@ -282,6 +282,7 @@ class Run {
     stats.iteration = iteration;
     report("solve", iteration, domain);
     auto t = Clock::now();
+    contour_ = IsoSurface();  // the last solve's: freed for the solve's peak of memory
     const std::vector<double> warm = domain.f();
     // The solve's system and multigrid are the run's peak of memory; the
     // triangulation is rebuilt from the tets when the optimizer next needs it.
@@ -299,6 +300,7 @@ class Run {
   }
 
   void optimize(Domain& domain, int iteration, IterationStats& stats, int rounds) {
+    contour_ = IsoSurface();  // of the domain before the moves: freed for the optimizer's peak
     const auto t = Clock::now();
     for (int round = 0; round < rounds; ++round) {
       report("optimize", iteration, domain);
