@@ -273,8 +273,9 @@ class Cleaner {
     const Vec3 p0 = position(ring[0]), p1 = position(ring[1]), p2 = position(ring[2]);
     const double longest = std::max({(p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
     const bool low = std::abs((position(v) - p0).dot(n)) <= options_.max_deviation * longest;
-    for (const Vec3& m : normals)
-      if (!low && n.dot(m) < min_cosine_) return false;
+    if (!low)
+      for (const Vec3& m : normals)
+        if (n.dot(m) < min_cosine_) return false;
     CGAL::Euler::remove_center_vertex(m_.halfedge(v), m_);
     return true;
   }
