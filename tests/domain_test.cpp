@@ -272,6 +272,44 @@ TEST(Domain, AMoveBuildsTheSameTetsAsASequentialTriangulationOnAnyThreads) {
   }
 }
 
+// With its tets released (the optimizer's move), a domain still moves, the
+// same as with them; its tets rebuilt are the same Delaunay tets, with their
+// neighbours, and point location and interpolation work again.
+TEST(Domain, ReleasedTetsMoveTheSameAndAreRebuiltTheSame) {
+  Domain d = Domain::initial(test::sample_sphere(2000));
+  std::vector<double> f;
+  for (const Vec3& p : d.vertices()) f.push_back(p.squaredNorm() - 0.25);
+  d.set_f(f);
+  const Domain live = d;
+  std::vector<Vec3> positions = d.vertices();
+  for (std::size_t i = 0; i < positions.size(); i += 5)
+    if (!d.on_boundary_sphere(static_cast<int>(i))) positions[i] *= 0.998;
+  d.release_tets();
+  EXPECT_EQ(d.num_tets(), 0u);
+  EXPECT_EQ(d.vertices(), live.vertices());
+  EXPECT_EQ(d.f(), live.f());
+  const Domain moved = d.moved(positions, live.f()),
+               moved_live = live.moved(positions, live.f());
+  EXPECT_EQ(moved.tets(), moved_live.tets());
+  EXPECT_EQ(moved.tet_neighbors(), moved_live.tet_neighbors());
+  d.rebuild_tets();
+  ASSERT_GT(d.num_tets(), 0u);
+  EXPECT_EQ(sorted(d.tets()), sorted(live.tets()));
+  const auto& tets = d.tets();
+  const auto& nb = d.tet_neighbors();
+  for (std::size_t t = 0; t < tets.size(); ++t)
+    for (int i = 0; i < 4; ++i) {
+      if (nb[t][i] < 0) continue;
+      const auto& u = tets[nb[t][i]];
+      int shared = 0;
+      for (int k = 0; k < 4; ++k)
+        if (k != i) shared += std::count(u.begin(), u.end(), tets[t][k]);
+      ASSERT_EQ(shared, 3) << "tet " << t << " face " << i;
+    }
+  const Vec3 q(0.1, -0.2, 0.3);
+  EXPECT_NEAR(d.interpolate(q, d.f()), live.interpolate(q, live.f()), 1e-12);
+}
+
 TEST(Domain, CopyIsIndependent) {
   Domain a(random_points_in_ball(100, 1.0, 10));
   Domain b = a;

@@ -224,13 +224,24 @@ TEST_F(FemTest, GalerkinProductMatchesEigensProduct) {
       ASSERT_LT(mine.innerIndexPtr()[p - 1], mine.innerIndexPtr()[p]);
 
   // From A's lower triangle alone: the same pattern, the same values but
-  // for the order of the sums.
+  // for the order of the sums, whole or as a lower triangle too.
   const SparseMatrix lower = A.triangularView<Eigen::Lower>();
-  const SparseMatrix from_lower = galerkin_product(P, lower, Stored::kLower);
+  const SparseMatrix from_lower = galerkin_product(P, lower, Stored::kLower, Stored::kAll);
   ASSERT_EQ(from_lower.nonZeros(), mine.nonZeros());
   for (Eigen::Index k = 0; k < mine.nonZeros(); ++k) {
     ASSERT_EQ(from_lower.innerIndexPtr()[k], mine.innerIndexPtr()[k]);
     ASSERT_NEAR(from_lower.valuePtr()[k], mine.valuePtr()[k], 1e-13 * eigen.norm());
+  }
+  const SparseMatrix mine_lower = mine.triangularView<Eigen::Lower>();
+  ASSERT_LT(mine_lower.nonZeros(), mine.nonZeros());
+  for (const Stored stored : {Stored::kAll, Stored::kLower}) {
+    const SparseMatrix to_lower =
+        galerkin_product(P, stored == Stored::kAll ? A : lower, stored, Stored::kLower);
+    ASSERT_EQ(to_lower.nonZeros(), mine_lower.nonZeros());
+    for (Eigen::Index k = 0; k < mine_lower.nonZeros(); ++k) {
+      ASSERT_EQ(to_lower.innerIndexPtr()[k], mine_lower.innerIndexPtr()[k]);
+      ASSERT_NEAR(to_lower.valuePtr()[k], mine_lower.valuePtr()[k], 1e-13 * eigen.norm());
+    }
   }
 
   // In single precision (the multigrid's coarse levels): from A in double,

@@ -140,6 +140,15 @@ class Domain {
   void release_triangulation() const;
   bool triangulation_released() const;
 
+  // Frees the tets and their neighbours too, keeping the vertices, f, flags,
+  // centre and radius: for a domain about to be replaced by moved() (the old
+  // and the new tets together are the optimizer's peak of memory). Until
+  // rebuild_tets(), only moved() and the vertex, value and flag accessors may
+  // be called. rebuild_tets() makes the Delaunay tets of the vertices again
+  // (the domain's tets, in concurrent_delaunay's order).
+  void release_tets();
+  void rebuild_tets();
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -107,11 +107,17 @@ SparseMatrix gram_matrix(const SparseMatrix& A, const Eigen::VectorXd& d,
 // The Galerkin product P^T A P (P: n x m, A: n x n symmetric, all entries
 // stored or its lower triangle alone), column by column in parallel and
 // deterministic: the coarse operators of the multigrid solver, all entries
-// stored. A and the result in double or single precision (Out = float: the
-// multigrid's coarse levels); the sums in double.
+// or the lower triangle (`result`, by default as A is stored). A and the
+// result in double or single precision (Out = float: the multigrid's coarse
+// levels); the sums in double.
 template <class Out = double, class Scalar = double>
 Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::SparseMatrix<Scalar>& A,
-                                          Stored stored = Stored::kAll);
+                                          Stored stored, Stored result);
+template <class Out = double, class Scalar = double>
+Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::SparseMatrix<Scalar>& A,
+                                          Stored stored = Stored::kAll) {
+  return galerkin_product<Out, Scalar>(P, A, stored, stored);
+}
 
 // A B, column by column in parallel and deterministic.
 SparseMatrix sparse_product(const SparseMatrix& A, const SparseMatrix& B);

@@ -124,19 +124,23 @@ void build(const std::vector<Vec3>& points, DelaunayArrays& out) {
     std::sort(order.begin() + start[v], order.begin() + start[v + 1],
               [&](int a, int b) { return corners[a] < corners[b]; });
   });
-  // Written out in the cells' own order (their memory in turn; the ranks and
-  // the arrays are what is reached at random).
-  std::vector<int> rank(T);
-  polled_parallel_for(T, [&](std::size_t r) { rank[order[r]] = static_cast<int>(r); });
+  // Each cell's rank is its info; the corners are read off the cells again
+  // rather than kept beside the arrays (this is the rebuild's peak of memory).
+  // Written out in the cells' own order (their memory in turn; the arrays are
+  // what is reached at random).
+  polled_parallel_for(T, [&](std::size_t r) { cells[order[r]]->info() = static_cast<int>(r); });
   std::vector<int>().swap(order);
-  polled_parallel_for(T, [&](std::size_t t) { cells[t]->info() = rank[t]; });
+  std::vector<std::array<int, 4>>().swap(corners);
   out.tets.resize(T);
   out.neighbors.resize(T);
   polled_parallel_for(T, [&](std::size_t t) {
-    const int r = rank[t];
-    out.tets[r] = corners[t];
-    for (int i = 0; i < 4; ++i)
-      out.neighbors[r][i] = cells[t]->neighbor(kEven[rotation[t]][i])->info();
+    const auto c = cells[t];
+    const int r = c->info();
+    const int* p = kEven[rotation[t]];
+    for (int i = 0; i < 4; ++i) {
+      out.tets[r][i] = c->vertex(p[i])->info();
+      out.neighbors[r][i] = c->neighbor(p[i])->info();
+    }
   });
   // Each vertex's walks start from the first tet that has it, the infinite
   // vertex's from the first hull face.

@@ -188,24 +188,44 @@ Domain Domain::moved(std::vector<Vec3> new_positions, std::vector<double> f) con
   Domain out;
   Impl& o = *out.impl_;
   o.f = std::move(f);
-  // Built on all cores and handed over as the arrays, released: points are
-  // located by walking them, and the triangulation is restored from them
-  // when an insertion or interpolation needs it (Impl::restore).
-  detail::DelaunayArrays built = detail::concurrent_delaunay(new_positions);
-  if (built.vertices != n)
-    throw std::invalid_argument("Domain::move_vertices: two vertices would coincide");
   o.mesh.vertices = std::move(new_positions);
-  o.mesh.tets = std::move(built.tets);
-  o.neighbors = std::move(built.neighbors);
-  o.released_vertex_cells = std::move(built.vertex_cells);
-  o.released.store(true);
+  if (!o.delaunay_arrays())
+    throw std::invalid_argument("Domain::move_vertices: two vertices would coincide");
   o.flags = d.flags;
   o.center = d.center;
   o.radius = d.radius;
   return out;
 }
 
+bool Domain::Impl::delaunay_arrays() {
+  // Built on all cores and handed over as the arrays, released: points are
+  // located by walking them, and the triangulation is restored from them
+  // when an insertion or interpolation needs it (restore()).
+  detail::DelaunayArrays built = detail::concurrent_delaunay(mesh.vertices);
+  if (built.vertices != mesh.vertices.size()) return false;
+  mesh.tets = std::move(built.tets);
+  neighbors = std::move(built.neighbors);
+  released_vertex_cells = std::move(built.vertex_cells);
+  released.store(true);
+  return true;
+}
+
 void Domain::release_triangulation() const { impl_->release(); }
+
+void Domain::release_tets() {
+  Impl& d = *impl_;
+  d.release();
+  std::vector<std::array<int, 4>>().swap(d.mesh.tets);
+  std::vector<std::array<int, 4>>().swap(d.neighbors);
+  std::vector<int>().swap(d.released_vertex_cells);
+}
+
+void Domain::rebuild_tets() {
+  Impl& d = *impl_;
+  d.release();
+  if (!d.delaunay_arrays())
+    throw std::logic_error("Domain::rebuild_tets: two of the domain's vertices coincide");
+}
 
 bool Domain::triangulation_released() const { return impl_->released.load(); }
 

@@ -85,6 +85,10 @@ struct Domain::Impl {
     released.store(false, std::memory_order_release);
   }
 
+  // The Delaunay tets of the vertices, built on all cores, as the arrays with
+  // the triangulation released (false, nothing changed, when two coincide).
+  bool delaunay_arrays();
+
   // Rebuilds the dense arrays from the triangulation (vertex infos are the
   // dense indices and must be 0..n-1).
   void reindex() {

@@ -210,13 +210,13 @@ SparseMatrix sparse_product(const SparseMatrix& A, const SparseMatrix& B) {
 
 template <class Out, class Scalar>
 Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::SparseMatrix<Scalar>& A,
-                                          Stored stored) {
+                                          Stored stored, Stored result) {
   if (A.rows() != A.cols() || P.rows() != A.rows())
     throw std::invalid_argument("galerkin_product: P must have as many rows as A");
   if (!A.isCompressed()) {
     Eigen::SparseMatrix<Scalar> compressed = A;
     compressed.makeCompressed();
-    return galerkin_product<Out>(P, compressed, stored);
+    return galerkin_product<Out>(P, compressed, stored, result);
   }
   const Columns p(P);
   const int* a_outer = A.outerIndexPtr();
@@ -292,28 +292,32 @@ Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::Sp
     return f;
   };
   const int m = static_cast<int>(P.cols());
+  // The rows from `first(j)` on: all, or those on and below the diagonal.
+  const auto first = [&](int j) { return result == Stored::kLower ? j : 0; };
   return accumulate_columns_as<Out>(
       m, m,
       [&](int j, auto&& visit) {
         const Fine& f = fine_column(j);
         for (int i : f.touched)
-          for (int q = r.outer[i]; q < r.outer[i + 1]; ++q) visit(r.inner[q]);
+          for (int q = r.outer[i]; q < r.outer[i + 1]; ++q)
+            if (r.inner[q] >= first(j)) visit(r.inner[q]);
       },
       [&](int j, auto&& add) {
         const Fine& f = fine_column(j);
         for (int i : f.touched)
-          for (int q = r.outer[i]; q < r.outer[i + 1]; ++q) add(r.inner[q], f.sum[i] * r.value[q]);
+          for (int q = r.outer[i]; q < r.outer[i + 1]; ++q)
+            if (r.inner[q] >= first(j)) add(r.inner[q], f.sum[i] * r.value[q]);
       },
       nullptr, [](const int*, const int*) {});
 }
 template SparseMatrix galerkin_product<double, double>(const SparseMatrix&, const SparseMatrix&,
-                                                       Stored);
+                                                       Stored, Stored);
 template SparseMatrix galerkin_product<double, float>(const SparseMatrix&,
-                                                      const Eigen::SparseMatrix<float>&, Stored);
+                                                      const Eigen::SparseMatrix<float>&, Stored, Stored);
 template Eigen::SparseMatrix<float> galerkin_product<float, double>(const SparseMatrix&,
-                                                                    const SparseMatrix&, Stored);
+                                                                    const SparseMatrix&, Stored, Stored);
 template Eigen::SparseMatrix<float> galerkin_product<float, float>(
-    const SparseMatrix&, const Eigen::SparseMatrix<float>&, Stored);
+    const SparseMatrix&, const Eigen::SparseMatrix<float>&, Stored, Stored);
 
 SparseMatrix hessian_energy(const TetMesh& mesh, Stored stored) {
   const bool lower = stored == Stored::kLower;

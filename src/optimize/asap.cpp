@@ -4,6 +4,7 @@
 #include "optimize/energy_terms.h"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <Eigen/SVD>
 #include <tbb/parallel_for.h>
 
@@ -56,7 +57,22 @@ Eigen::Matrix3d best_rotation(const Eigen::Matrix3d& C) {
 
 // S* of Eq. (7) for a tet whose smoothed volume is `smoothed_volume`: the
 // target of its centered corner i, c(t) + S* v_{t'_i} - c(t), is S* v_{t'_i}.
-Eigen::Matrix3d asap_similarity(const std::array<Vec3, 4>& v, double smoothed_volume) {
+// S* = s R, kept as the quaternion of R times sqrt(s) (32 bytes against 72:
+// with the tets' volumes, the largest array of the optimizer's round).
+struct Similarity {
+  Eigen::Quaterniond q;
+  // s R from q (|q|^2 = s): the rotation's homogeneous form.
+  Eigen::Matrix3d matrix() const {
+    const double w = q.w(), x = q.x(), y = q.y(), z = q.z();
+    Eigen::Matrix3d m;
+    m << w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y),
+        2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x),
+        2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z;
+    return m;
+  }
+};
+
+Similarity asap_similarity(const std::array<Vec3, 4>& v, double smoothed_volume) {
   const auto& ref = reference_tet();
   const Vec3 center = 0.25 * (v[0] + v[1] + v[2] + v[3]);
   // Eq. (3): C = t' (t - c(t))^T, summed over the corners.
@@ -64,7 +80,9 @@ Eigen::Matrix3d asap_similarity(const std::array<Vec3, 4>& v, double smoothed_vo
   for (int i = 0; i < 4; ++i) C += ref[i] * (v[i] - center).transpose();
   // Eq. (5): Sigma' = cbrt(vol_bar(t) / vol(t')) I_3.
   const double scale = std::cbrt(std::max(smoothed_volume, 0.0) / kReferenceVolume);
-  return scale * best_rotation(C);
+  Eigen::Quaterniond q(best_rotation(C));
+  q.coeffs() *= std::sqrt(scale) / q.norm();
+  return {q};
 }
 
 }  // namespace
@@ -82,9 +100,9 @@ void add_asap_term(const Domain& domain, double weight_scale, QuadraticAccumulat
   detail::polled_parallel_for(m, [&](std::size_t t) { volume[t] = signed_volume(corners(t)); });
 
   // vol_bar(t): the mean of the volumes of t and of the tets adjacent to it.
-  // Each tet keeps S* (72 bytes; its four targets took 96, the peak of a 1M
+  // Each tet keeps S* (32 bytes; its four targets took 96, the peak of a 1M
   // run). new[] leaves them unzeroed (a vector would zero a GB serially).
-  const std::unique_ptr<Eigen::Matrix3d[]> similarity(new Eigen::Matrix3d[m]);
+  const std::unique_ptr<Similarity[]> similarity(new Similarity[m]);
   detail::polled_parallel_for(m, [&](std::size_t t) {
     double sum = volume[t];
     int count = 1;
@@ -109,11 +127,12 @@ void add_asap_term(const Domain& domain, double weight_scale, QuadraticAccumulat
       const int t = stars.tets[s];
       const int jl = detail::local_index(tets[t], j);
       for (int i = 0; i < 4; ++i) add(tets[t][i], weight[t] * ((i == jl) - 0.25));
-      q.b.segment<3>(3 * j) += weight[t] * (similarity[t] * ref[jl]);
+      q.b.segment<3>(3 * j) += weight[t] * (similarity[t].matrix() * ref[jl]);
     }
   });
   for (std::size_t t = 0; t < m; ++t) {
-    for (int i = 0; i < 4; ++i) q.c += weight[t] * (similarity[t] * ref[i]).squaredNorm();
+    const Eigen::Matrix3d S = similarity[t].matrix();
+    for (int i = 0; i < 4; ++i) q.c += weight[t] * (S * ref[i]).squaredNorm();
     detail::poll_every(t);
   }
 }

@@ -259,14 +259,17 @@ OptimizerReport optimize_domain(Domain& domain, const OptimizerOptions& options)
     detail::poll();
     energy.reset();
     std::vector<double> carried = carried_values(domain, moving, located);
-    // The old triangulation is not needed to build the new one: freed first
-    // (the round's peak of memory), restored only if moves are sent back;
-    // so are the locations, and the positions go to the new domain.
-    domain.release_triangulation();
+    // The old tets are not needed to build the new ones: freed first (the
+    // round's peak of memory), built again only if moves are sent back; so
+    // are the locations, and the positions go to the new domain.
     std::vector<Location>().swap(located);
+    domain.release_tets();
     Domain moved = domain.moved(std::move(positions), std::move(carried));
     detail::poll();
-    if (send_back(collapsed_vertices(moved, moving))) continue;
+    if (send_back(collapsed_vertices(moved, moving))) {
+      domain.rebuild_tets();
+      continue;
+    }
     const std::vector<Vec3>& moved_to = moved.vertices();
     for (Eigen::Index v = 0; v < n; ++v)
       report.max_displacement =

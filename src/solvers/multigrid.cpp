@@ -66,13 +66,14 @@ double largest_eigenvalue(Eigen::Index n, const Product& multiply, const BlockJa
 struct Multigrid::Impl {
   struct Level {
     // The level's matrix: level 0's is the caller's; a coarse level's is
-    // P^T A P of the finer one, in single precision but on the coarsest
-    // level (factored by CHOLMOD): it only enters the V-cycle, whose
-    // products sum in double.
+    // P^T A P of the finer one, its lower triangle, in single precision but
+    // on the coarsest level (factored by CHOLMOD): it only enters the
+    // V-cycle, whose products sum in double.
     const SparseMatrix* A = nullptr;  // level 0 and the coarsest
     const SymmetricProduct<double>* times_A = nullptr;  // level 0's: the caller's
     SparseMatrix coarsest;
     Eigen::SparseMatrix<float> single;  // the others
+    SymmetricProduct<float> times_single;
     const SparseMatrix* P = nullptr;    // to this level from the next coarser one
     SparseMatrix R;                     // P^T, stored by columns: the rows of P
     BlockJacobi smoother;               // D, the diagonal with blocks of strongly coupled unknowns
@@ -83,14 +84,16 @@ struct Multigrid::Impl {
     void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
       if (times_A)
         (*times_A)(x, y);
-      else if (A)  // the coarsest (solved by CHOLMOD, not smoothed): whole
-        symmetric_product(*A, x, y);
+      else if (A)  // the coarsest is solved by CHOLMOD, not smoothed
+        throw std::logic_error("multigrid: a product with the coarsest level");
       else
-        symmetric_product(single, x, y);
+        times_single(x, y);
     }
     Eigen::Index size() const { return A ? A->rows() : single.rows(); }
+    // Both triangles counted.
     Eigen::Index nonzeros() const {
-      return times_A ? times_A->nonzeros() : A ? A->nonZeros() : single.nonZeros();
+      return times_A ? times_A->nonzeros()
+                     : 2 * (A ? A->nonZeros() : single.nonZeros()) - size();
     }
   };
   MultigridOptions options;
@@ -205,16 +208,19 @@ void Multigrid::setup(const SymmetricProduct<double>& times_A,
     Impl::Level& coarse = d.levels.emplace_back();
     coarse.P = &P;
     compressed_transpose(P).swap(coarse.R);
-    // Only the finest level may be a triangle; the coarse ones are stored whole.
-    const Stored fine_stored = k == 0 ? stored : Stored::kAll;
+    // The coarse levels hold their lower triangles (half the memory), whatever A's storage.
+    const Stored fine_stored = k == 0 ? stored : Stored::kLower;
+    constexpr Stored lower = Stored::kLower;
     if (coarsest(k + 1, P.cols())) {
-      (fine.A ? galerkin_product(P, *fine.A, fine_stored) : galerkin_product(P, fine.single))
+      (fine.A ? galerkin_product(P, *fine.A, fine_stored, lower)
+              : galerkin_product(P, fine.single, fine_stored, lower))
           .swap(coarse.coarsest);
       coarse.A = &coarse.coarsest;
     } else {
-      (fine.A ? galerkin_product<float>(P, *fine.A, fine_stored)
-              : galerkin_product<float>(P, fine.single))
+      (fine.A ? galerkin_product<float>(P, *fine.A, fine_stored, lower)
+              : galerkin_product<float>(P, fine.single, fine_stored, lower))
           .swap(coarse.single);
+      coarse.times_single = SymmetricProduct<float>(coarse.single, /*lower=*/true);
       finish(coarse, coarse.single);
     }
     poll();

@@ -2,10 +2,10 @@
 //
 // The levels are given as prolongations (the progressive hierarchy of
 // hierarchy.h); the coarse operators are the Galerkin products P^T A P, held
-// in single precision (they only precondition; CG's products are A's), the
-// smoother is a Chebyshev polynomial in D^-1 A (D the diagonal of A with
-// blocks for strongly coupled unknowns, block_jacobi.h), run on all cores,
-// and the coarsest level is factored by CHOLMOD. Hand-written on
+// as lower triangles in single precision (they only precondition; CG's
+// products are A's), the smoother is a Chebyshev polynomial in D^-1 A (D the
+// diagonal of A with blocks for strongly coupled unknowns, block_jacobi.h),
+// run on all cores, and the coarsest level is factored by CHOLMOD. Hand-written on
 // Eigen and TBB: Debian's hypre is built without OpenMP, so in one process
 // its BoomerAMG runs on one core, and on the SSD systems it needs 2-4x the
 // iterations of this hierarchy (docs/benchmarks.md, "Multigrid").
