@@ -21,9 +21,9 @@ namespace {
 
 // Measured peaks (docs/benchmarks.md, "Memory and the budget"): per vertex of
 // the final domain, the solve's matrices, its multigrid levels and the domain
-// (1.3-1.8 KB with SSD, 2.35 KB with the spectral solver: 1.5x kept in hand);
+// (1.1-1.5 KB with SSD, 1.4 KB with the spectral solver: 1.5x kept in hand);
 // per input point, the points, their kd-trees and locations; and a floor.
-constexpr double kBytesPerVertex = 3500;
+constexpr double kBytesPerVertex = 2300;
 constexpr double kBytesPerPoint = 500;
 constexpr double kBaseBytes = 150e6;
 // Final domain vertices per target-sized isofacet (the sum of area / target
