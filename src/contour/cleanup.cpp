@@ -266,13 +266,13 @@ class Cleaner {
       const Vertex corner = m_.target(m_.next(outside));
       if (std::find(ring.begin(), ring.end(), corner) != ring.end()) return false;
     }
-    Vec3 n = unit_normal(position(ring[0]), position(ring[1]), position(ring[2]));
+    const Vec3 p0 = position(ring[0]), p1 = position(ring[1]), p2 = position(ring[2]);
+    Vec3 n = unit_normal(p0, p1, p2);
     if (n.dot(normals[0] + normals[1] + normals[2]) < 0) n = -n;
     // A corner over the new triangle by at most max_deviation of its longest
     // edge is removed however its triangles turn (a small spike, no feature).
-    const Vec3 p0 = position(ring[0]), p1 = position(ring[1]), p2 = position(ring[2]);
-    const double longest = std::max({(p1 - p0).norm(), (p2 - p1).norm(), (p0 - p2).norm()});
-    const bool low = std::abs((position(v) - p0).dot(n)) <= options_.max_deviation * longest;
+    const bool low =
+        std::abs((position(v) - p0).dot(n)) <= options_.max_deviation * longest_edge(p0, p1, p2);
     if (!low)
       for (const Vec3& m : normals)
         if (n.dot(m) < min_cosine_) return false;
@@ -299,11 +299,13 @@ class Cleaner {
                                                                    : Mesh::null_halfedge();
   }
 
+  static double longest_edge(const Vec3& a, const Vec3& b, const Vec3& c) {
+    return std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+  }
   double longest_edge(Face f) const {
-    double longest = 0;
-    for (Halfedge k : m_.halfedges_around_face(m_.halfedge(f)))
-      longest = std::max(longest, (position(m_.target(k)) - position(m_.source(k))).norm());
-    return longest;
+    const Halfedge h = m_.halfedge(f);
+    return longest_edge(position(m_.source(h)), position(m_.target(h)),
+                        position(m_.target(m_.next(h))));
   }
 
   // Every triangle around the two ends of h, but the two that vanish, keeps
