@@ -7,6 +7,7 @@
 //   solvers_bench [--inputs scan.ply,...] [--sizes 50000,200000,1000000]
 //                 [--out bench/results/solvers.txt] [--direct-max 450000]
 //                 [--tolerance 1e-6] [--routes cg+multigrid,cholmod]
+//                 [--multigrid-variants 4:4,3:3]  (coarsening ratio:smoothing degree)
 //
 // Domains, either
 // - --inputs: the loop's own, from `pdd reconstruct` with default options on
@@ -21,8 +22,10 @@
 // earlier ones are its coarse levels, and reports the last solve; the other
 // routes solve the last domain alone. Every route runs in its own child
 // process (fork); its peak memory is the child's peak resident set less the
-// parent's at the fork (the domains). CHOLMOD is skipped above --direct-max
-// vertices, where its factor outgrows this machine.
+// parent's at the fork (the domains); with --inputs the routes run one after
+// the other in this process, without peak memory (see run_isolated). CHOLMOD
+// is skipped above --direct-max vertices, where its factor outgrows this
+// machine.
 #include <pdd/domain.h>
 #include <pdd/io.h>
 #include <pdd/optimize.h>
@@ -167,8 +170,11 @@ Outcome run_cholmod(const std::vector<pdd::Domain>& domains, const pdd::PointSet
 }
 
 Outcome run_multigrid(const std::vector<pdd::Domain>& domains, const pdd::PointSet& samples,
-                      double tolerance) {
-  auto solver = pdd::make_solver(ssd_options(samples, tolerance));
+                      double tolerance, double ratio = 0, int degree = 0) {
+  pdd::SolverOptions o = ssd_options(samples, tolerance);
+  if (ratio > 0) o.linear.coarsening_ratio = ratio;
+  if (degree > 0) o.linear.smoothing_degree = degree;
+  auto solver = pdd::make_solver(o);
   for (const pdd::Domain& d : domains) solver->solve(d, samples);
   const pdd::SolverStats& s = solver->stats();
   return {s.iterations, s.residual, s.factorize_seconds, s.solve_seconds, s.levels, ""};
@@ -292,7 +298,20 @@ long resident_kb() {
 
 // Runs the route in a child process; its line with the peak memory added.
 std::string run_isolated(const Route& route, const std::vector<pdd::Domain>& domains,
-                         const pdd::PointSet& samples, double tolerance) {
+                         const pdd::PointSet& samples, double tolerance, bool fork_child) {
+  if (!fork_child) {
+    // In this process, without the peak memory: a child forked after the loop (--inputs)
+    // waits forever in CHOLMOD's OpenMP, whose thread pool the fork does not copy.
+    try {
+      const Outcome o = route.run(domains, samples, tolerance);
+      char buf[512];
+      std::snprintf(buf, sizeof buf, "%-13s %6d %9.1e %7d %9.2f %9.2f | in process", route.name,
+                    o.iterations, o.residual, o.levels, o.setup, o.solve);
+      return buf;
+    } catch (const std::exception& e) {
+      return std::string(route.name) + " FAILED: " + e.what();
+    }
+  }
   int fd[2];
   if (pipe(fd) != 0) return "pipe failed";
   const long parent_kb = resident_kb();
@@ -337,6 +356,7 @@ int main(int argc, char** argv) {
   std::string out_path = "bench/results/solvers.txt";
   std::size_t direct_max = 450000;
   double tolerance = 1e-6;
+  std::vector<std::pair<double, int>> variants;  // --multigrid-variants ratio:degree,...
   std::string only;  // the routes to run, comma-separated between commas; all when empty
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--sizes")) {
@@ -354,18 +374,40 @@ int main(int argc, char** argv) {
       direct_max = std::stoul(argv[i + 1]);
     } else if (!std::strcmp(argv[i], "--tolerance")) {
       tolerance = std::stod(argv[i + 1]);
+    } else if (!std::strcmp(argv[i], "--multigrid-variants")) {
+      std::stringstream ss(argv[i + 1]);
+      std::string item;
+      while (std::getline(ss, item, ','))
+        variants.emplace_back(std::stod(item.substr(0, item.find(':'))),
+                              std::stoi(item.substr(item.find(':') + 1)));
     } else if (!std::strcmp(argv[i], "--routes")) {
       only = "," + std::string(argv[i + 1]) + ",";
     }
   }
   std::vector<Route> routes = {
-      {"cg+multigrid", run_multigrid},
+      {"cg+multigrid",
+       [](const std::vector<pdd::Domain>& d, const pdd::PointSet& s, double t) {
+         return run_multigrid(d, s, t);
+       }},
       {"cg+ic", run_incomplete_cholesky},
 #ifdef PDD_HAVE_HYPRE
       {"cg+boomeramg", run_boomeramg},
 #endif
       {"cholmod", run_cholmod},
   };
+  // The multigrid with other coarsening ratios and smoothing degrees, in turn with the default.
+  std::vector<std::string> variant_names;
+  for (const auto& [ratio, degree] : variants) {
+    std::ostringstream name;
+    name << "mg r" << ratio << " d" << degree;
+    variant_names.push_back(name.str());
+  }
+  for (std::size_t k = 0; k < variants.size(); ++k) {
+    const auto [ratio, degree] = variants[k];
+    routes.push_back({variant_names[k].c_str(),
+                      [ratio, degree](const std::vector<pdd::Domain>& d, const pdd::PointSet& s,
+                                      double t) { return run_multigrid(d, s, t, ratio, degree); }});
+  }
 
   std::ostringstream report;
   report << "# solvers_bench: SSD (Eq. 15) on progressive domains, relative"
@@ -407,12 +449,14 @@ int main(int argc, char** argv) {
     std::cout << head.str() << std::flush;
     report << head.str();
     for (const Route& r : routes) {
-      if (!only.empty() && only.find("," + std::string(r.name) + ",") == std::string::npos) continue;
+      const bool variant = !std::strncmp(r.name, "mg r", 4);  // --multigrid-variants always run
+      if (!variant && !only.empty() && only.find("," + std::string(r.name) + ",") == std::string::npos)
+        continue;
       std::string line;
       if (!std::strcmp(r.name, "cholmod") && domains.back().num_vertices() > direct_max)
         line = "cholmod       skipped: over --direct-max";
       else
-        line = run_isolated(r, domains, samples, tolerance);
+        line = run_isolated(r, domains, samples, tolerance, inputs.empty());
       std::cout << line << "\n" << std::flush;
       report << line << "\n";
     }
