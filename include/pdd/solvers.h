@@ -60,7 +60,7 @@ struct LinearSolverOptions {
   // after each coarse correction; each coarse level has about 1 / coarsening_ratio (>= 1.3) of
   // the vertices of the finer one; levels of coarsest_size vertices or fewer are factored.
   int smoothing_degree = 4;
-  double coarsening_ratio = 3;
+  double coarsening_ratio = 4;
   std::size_t coarsest_size = 2000;
   // The smoother inverts whole the diagonal blocks of unknowns i, j coupled by |a_ij| >
   // block_coupling sqrt(a_ii a_jj) (groups of up to 16); >= 1 is plain Jacobi. SSD's squared
