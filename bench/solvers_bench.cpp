@@ -286,7 +286,16 @@ Outcome run_boomeramg(const std::vector<pdd::Domain>& domains, const pdd::PointS
 struct Route {
   const char* name;
   std::function<Outcome(const std::vector<pdd::Domain>&, const pdd::PointSet&, double)> run;
+  bool always = false;  // run whatever --routes says (the --multigrid-variants)
 };
+
+// A route's line of the report, without the peak memory.
+std::string outcome_line(const char* name, const Outcome& o) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, "%-13s %6d %9.1e %7d %9.2f %9.2f", name, o.iterations, o.residual,
+                o.levels, o.setup, o.solve);
+  return o.note.empty() ? std::string(buf) : buf + ("  (" + o.note + ")");
+}
 
 long resident_kb() {
   std::ifstream status("/proc/self/status");
@@ -303,11 +312,7 @@ std::string run_isolated(const Route& route, const std::vector<pdd::Domain>& dom
     // In this process, without the peak memory: a child forked after the loop (--inputs)
     // waits forever in CHOLMOD's OpenMP, whose thread pool the fork does not copy.
     try {
-      const Outcome o = route.run(domains, samples, tolerance);
-      char buf[512];
-      std::snprintf(buf, sizeof buf, "%-13s %6d %9.1e %7d %9.2f %9.2f | in process", route.name,
-                    o.iterations, o.residual, o.levels, o.setup, o.solve);
-      return buf;
+      return outcome_line(route.name, route.run(domains, samples, tolerance)) + " | in process";
     } catch (const std::exception& e) {
       return std::string(route.name) + " FAILED: " + e.what();
     }
@@ -321,10 +326,7 @@ std::string run_isolated(const Route& route, const std::vector<pdd::Domain>& dom
     char buf[512];
     try {
       const Outcome o = route.run(domains, samples, tolerance);
-      std::snprintf(buf, sizeof buf, "%-13s %6d %9.1e %7d %9.2f %9.2f", route.name, o.iterations,
-                    o.residual, o.levels, o.setup, o.solve);
-      std::string line = buf;
-      if (!o.note.empty()) line += "  (" + o.note + ")";
+      const std::string line = outcome_line(route.name, o);
       if (write(fd[1], line.data(), line.size()) < 0) _exit(1);
     } catch (const std::exception& e) {
       std::snprintf(buf, sizeof buf, "%-13s FAILED: %s", route.name, e.what());
@@ -406,7 +408,8 @@ int main(int argc, char** argv) {
     const auto [ratio, degree] = variants[k];
     routes.push_back({variant_names[k].c_str(),
                       [ratio, degree](const std::vector<pdd::Domain>& d, const pdd::PointSet& s,
-                                      double t) { return run_multigrid(d, s, t, ratio, degree); }});
+                                      double t) { return run_multigrid(d, s, t, ratio, degree); },
+                      /*always=*/true});
   }
 
   std::ostringstream report;
@@ -449,8 +452,7 @@ int main(int argc, char** argv) {
     std::cout << head.str() << std::flush;
     report << head.str();
     for (const Route& r : routes) {
-      const bool variant = !std::strncmp(r.name, "mg r", 4);  // --multigrid-variants always run
-      if (!variant && !only.empty() && only.find("," + std::string(r.name) + ",") == std::string::npos)
+      if (!r.always && !only.empty() && only.find("," + std::string(r.name) + ",") == std::string::npos)
         continue;
       std::string line;
       if (!std::strcmp(r.name, "cholmod") && domains.back().num_vertices() > direct_max)
