@@ -1,6 +1,7 @@
 // pdd: surface reconstruction by progressive discrete domains.
 // A thin client of the library: parses options, calls pdd::, reports errors.
 #include "commands.h"
+#include "huge_pages.h"
 #include "signals.h"
 
 #include <pdd/errors.h>
@@ -10,12 +11,12 @@
 #include <iostream>
 
 int main(int argc, char** argv) {
+  pdd::cli::start_signal_watcher(argv, pdd::cli::ask_for_huge_pages());  // may start over once
   // Each iteration assembles and factors matrices of hundreds of megabytes and
   // frees them again. With glibc's defaults every such block is a fresh mmap
   // whose pages the kernel zeroes on first touch (a third of the run was
   // system time on a 20k-point scan); keeping freed memory in the heap for
   // reuse halves that (docs/benchmarks.md, "Where the time goes").
-  pdd::cli::start_signal_watcher(argv);
   mallopt(M_MMAP_THRESHOLD, 1 << 30);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
   // One heap for all threads: what a worker frees (half of each concurrently

@@ -48,11 +48,11 @@ void watch() {
 
 }  // namespace
 
-void start_signal_watcher(char** argv) {
+void start_signal_watcher(char** argv, bool restart) {
   const sigset_t set = cancel_signals();
   sigset_t current;
   pthread_sigmask(SIG_BLOCK, nullptr, &current);
-  if (!sigismember(&current, SIGINT) || !sigismember(&current, SIGTERM)) {
+  if (restart || !sigismember(&current, SIGINT) || !sigismember(&current, SIGTERM)) {
     pthread_sigmask(SIG_BLOCK, &set, nullptr);
     // OpenBLAS starts its threads when it is loaded, before main, with the
     // signals open; a thread inherits the mask only from its creator, so the

@@ -16,7 +16,9 @@ struct Interrupted {};
 // are never delivered to a handler, not even to the one METIS installs for
 // SIGTERM while it orders a matrix, which once deadlocked a run. A watcher
 // thread takes them with sigwait and raises the flag cancel_requested() reads.
-void start_signal_watcher(char** argv);
+// `restart`: re-execute even when the signals are blocked already (the
+// environment changed, huge_pages.h).
+void start_signal_watcher(char** argv, bool restart = false);
 
 // True once SIGINT or SIGTERM has arrived; the exit code it asks for (130 or 143).
 bool cancel_requested();

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include <gnu/libc-version.h>
 #include <sys/stat.h>
 
 #include "support/scratch_dir.h"
@@ -166,6 +168,40 @@ TEST_F(CliTest, SignalsCancelTheRunAndLeaveNoOutput) {
     EXPECT_NE(run.err.find("pdd: interrupted"), std::string::npos) << run.err;
     EXPECT_EQ(entries(), std::vector<std::string>{"in.xyz"}) << signal;
   }
+}
+
+// Where the kernel gives transparent huge pages to memory that asks and glibc
+// can ask (2.35 on), pdd starts over with its heap on them (apps/huge_pages.h),
+// unless the caller chose otherwise; the caller's other tunables stay.
+TEST_F(CliTest, TheHeapIsOnHugePagesUnlessTheCallerChose) {
+  std::ifstream policy("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string line;
+  std::getline(policy, line);
+  if (line.find("[madvise]") == std::string::npos)
+    GTEST_SKIP() << "the kernel's transparent huge pages: '" << line << "'";
+  int major = 0, minor = 0;
+  if (std::sscanf(gnu_get_libc_version(), "%d.%d", &major, &minor) != 2 ||
+      major * 1000 + minor < 2035)
+    GTEST_SKIP() << "glibc " << gnu_get_libc_version();
+  write_points(path("in.xyz"), test::sample_sphere(20000));
+  // The running process's huge pages (kB) a second after the start of a run
+  // that takes longer, which is then ended.
+  const auto huge_kb_with = [&](const std::string& given) {
+    std::ofstream script(path("pages.sh"));
+    script << (given.empty() ? "unset GLIBC_TUNABLES\n"
+                             : "export GLIBC_TUNABLES='" + given + "'\n")
+           << "'" << PDD_BINARY << "' reconstruct " << quoted_path("in.xyz") << " -o "
+           << quoted_path("out.ply") << " --target-edge 0.004 --quiet &\n"
+           << "sleep 1\nawk '/^AnonHugePages:/ { print $2 }' /proc/$!/smaps_rollup\n"
+           << "kill $!\nwait\n";
+    script.close();
+    const Outcome run = this->run("sh", quoted_path("pages.sh"));
+    return run.out.empty() ? -1 : std::stol(run.out);
+  };
+  EXPECT_GT(huge_kb_with(""), 0);
+  EXPECT_GT(huge_kb_with("glibc.malloc.perturb=0"), 0);
+  EXPECT_EQ(huge_kb_with("glibc.malloc.hugetlb=0"), 0);
+  EXPECT_FALSE(fs::exists(path("out.ply")));
 }
 
 TEST_F(CliTest, BadOutputIsRefusedBeforeReading) {
