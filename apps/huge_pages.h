@@ -6,9 +6,9 @@
 
 namespace pdd::cli {
 
-// Asks glibc's malloc (2.35 and later) to back its heap with transparent huge
-// pages, through GLIBC_TUNABLES, which glibc reads only when a process starts:
-// returns true when it set the variable and the process must start over for
+// Asks glibc's malloc (2.35 and later, as built) to back its heap with
+// transparent huge pages, through GLIBC_TUNABLES, which glibc reads only when
+// a process starts: returns true when it set the variable and the process must start over for
 // it to act. False when the kernel would not use them (transparent huge pages
 // "never", or "always", where every heap has them already), when glibc is
 // older, and when GLIBC_TUNABLES already says what to do (the user's choice:
