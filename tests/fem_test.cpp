@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <set>
@@ -294,38 +295,46 @@ TEST_F(FemTest, HessianEnergysLowerTriangleIsTheSameEntries) {
   }
 }
 
-// SSD adds its samples' gradient term into the Hessian energy in place, from
-// the sampled tets alone: exactly the sum with the whole weighted stiffness.
-TEST_F(FemTest, WeightedStiffnessAddedInPlaceFromTheWeightedTetsIsTheSum) {
+// SSD adds its samples' terms into the Hessian energy in place, from the
+// sampled tets alone: the products of Eq. (15) by their definitions.
+TEST_F(FemTest, SampleTermsAddedInPlaceAreTheProductsOfEquation15) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(0, 1);
-  std::vector<double> weights(mesh.tets.size(), 0.0);
-  int weighted = 0;
-  for (double& x : weights)
-    if (u(rng) < 0.2) {
-      x = 1 + std::floor(5 * u(rng));  // sample counts
-      ++weighted;
-    }
-  ASSERT_GT(weighted, 10);
-  const SparseMatrix stiffness = weighted_stiffness(mesh, weights);
-  for (const Stored stored : {Stored::kAll, Stored::kLower}) {
-    SparseMatrix in_place = hessian_energy(mesh, stored);
-    SparseMatrix expected = in_place;
-    const SparseMatrix added = stored == Stored::kLower
-                                   ? SparseMatrix(stiffness.triangularView<Eigen::Lower>())
-                                   : stiffness;
-    expected += 0.7 * added;
-    add_weighted_stiffness(in_place, mesh, weights, 0.7, stored);
-    ASSERT_EQ(in_place.nonZeros(), hessian_energy(mesh, stored).nonZeros());  // no new entry
-    EXPECT_LT(SparseMatrix(in_place - expected).norm(), 1e-14 * expected.norm());
-    EXPECT_GT(SparseMatrix(in_place - hessian_energy(mesh, stored)).norm(), 0.1 * added.norm());
+  std::vector<Vec3> points, normals;
+  for (int i = 0; i < 600; ++i) {
+    points.emplace_back(u(rng), u(rng), u(rng));
+    normals.push_back(Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized());
   }
-  // A pattern without the one-rings (the diagonal alone) cannot take it.
+  const std::vector<Location> loc = locate_points(domain, points);
+  std::vector<int> per_tet(mesh.tets.size(), 0);
+  for (const Location& l : loc) ++per_tet[l.tet];
+  ASSERT_GT(*std::max_element(per_tet.begin(), per_tet.end()), 1);  // tets with several samples
+  const SparseMatrix Phi = sampling_matrix(mesh, loc);
+  const SparseMatrix SG = selection_matrix(mesh.tets.size(), loc) * gradient_matrix(mesh);
+  Eigen::VectorXd N(3 * points.size());
+  for (std::size_t p = 0; p < points.size(); ++p) N.segment<3>(3 * p) = normals[p];
+  const double beta = 0.7, alpha = 3.5;
+  const SparseMatrix added = beta * SparseMatrix(SG.transpose() * SG) +
+                             alpha * SparseMatrix(Phi.transpose() * Phi);
+  const Eigen::VectorXd expected_b = SG.transpose() * N;
+  for (const Stored stored : {Stored::kAll, Stored::kLower}) {
+    const SparseMatrix energy = hessian_energy(mesh, stored);
+    SparseMatrix in_place = energy;
+    const SparseMatrix expected =
+        energy + (stored == Stored::kLower ? SparseMatrix(added.triangularView<Eigen::Lower>())
+                                           : added);
+    const Eigen::VectorXd b = add_sample_terms(in_place, mesh, loc, normals, beta, alpha, stored);
+    ASSERT_EQ(in_place.nonZeros(), energy.nonZeros());  // no new entry
+    EXPECT_LT(SparseMatrix(in_place - expected).norm(), 1e-14 * expected.norm());
+    EXPECT_GT(SparseMatrix(in_place - energy).norm(), 0.1 * added.norm());
+    EXPECT_LT((b - expected_b).norm(), 1e-14 * expected_b.norm());
+  }
+  // A pattern without the one-rings (the diagonal alone) cannot take them.
   SparseMatrix diagonal(static_cast<Eigen::Index>(mesh.vertices.size()),
                         static_cast<Eigen::Index>(mesh.vertices.size()));
   diagonal.setIdentity();
-  EXPECT_THROW(add_weighted_stiffness(diagonal, mesh, weights, 1.0), std::logic_error);
-  EXPECT_THROW(add_weighted_stiffness(diagonal, mesh, std::vector<double>(3, 1.0), 1.0),
+  EXPECT_THROW(add_sample_terms(diagonal, mesh, loc, normals, 1.0, 1.0), std::logic_error);
+  EXPECT_THROW(add_sample_terms(diagonal, mesh, loc, std::vector<Vec3>(3), 1.0, 1.0),
                std::invalid_argument);
 }
 
@@ -361,6 +370,26 @@ TEST_F(FemTest, SamplingMatrixInterpolatesLinearFunctionsExactly) {
     EXPECT_NEAR(values[i], a.dot(points[i]) + 0.25, 1e-12);
     EXPECT_NEAR(row_sums[i], 1.0, 1e-12);
   }
+}
+
+// A caller that keeps the location order gets the same locations; an order
+// of other points is refused.
+TEST_F(FemTest, PointsLocatedInAGivenOrderLandAsInTheirOwn) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 700; ++i) points.emplace_back(u(rng), u(rng), u(rng));
+  const std::vector<std::size_t> order = location_order(points);
+  ASSERT_EQ(order.size(), points.size());
+  EXPECT_EQ(std::set<std::size_t>(order.begin(), order.end()).size(), points.size());
+  const std::vector<Location> own = locate_points(domain, points);
+  const std::vector<Location> given = locate_points(domain, points, &order);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    EXPECT_EQ(given[i].tet, own[i].tet);
+    EXPECT_EQ(given[i].barycentric, own[i].barycentric);
+  }
+  const std::vector<std::size_t> shorter(order.begin(), order.end() - 1);
+  EXPECT_THROW(locate_points(domain, points, &shorter), std::invalid_argument);
 }
 
 // Thousands of samples in a domain of 30k vertices: located in spatial order

@@ -202,6 +202,26 @@ TEST_P(EachSolver, ScalingTheInputScalesTheZeroSet) {
   EXPECT_LT(worst, 1e-6);
 }
 
+// A solver keeps its samples' location order across solves: given other
+// points (here fewer of them, on a smaller sphere), it orders them afresh.
+TEST_P(EachSolver, OneSolverGivenOtherPointsSolvesAsAFreshOne) {
+  const PointSet first = test::sample_sphere(800);
+  PointSet second = test::sample_sphere(600);
+  for (Vec3& p : second.points) p *= 0.9;
+  const Domain domain = shell_domain(first, sphere_distance(), 0.15);
+  const auto solver = make_solver(options_for(GetParam()));
+  solver->solve(domain, first);
+  const std::vector<double> again = solver->solve(domain, second);
+  const std::vector<double> fresh = make_solver(options_for(GetParam()))->solve(domain, second);
+  ASSERT_EQ(again.size(), fresh.size());
+  double worst = 0, scale = 0;
+  for (std::size_t v = 0; v < fresh.size(); ++v) {
+    worst = std::max(worst, std::abs(again[v] - fresh[v]));
+    scale = std::max(scale, std::abs(fresh[v]));
+  }
+  EXPECT_LT(worst, 1e-4 * scale);
+}
+
 TEST_P(EachSolver, MissingNormalsAreAnInputError) {
   PointSet samples = test::sample_sphere(500);
   const Domain domain = Domain::initial(samples);

@@ -58,7 +58,7 @@ SparseMatrix cotangent_laplacian(const TetMesh& mesh);
 // (weights[t]): the stiffness matrix of the per-tet metric W_t. With
 // W_t = volume_t * I this is the Laplacian; the spectral solver uses it for
 // the gradient term at the samples (Eq. (17), G^T S^T C S G; SSD adds Eq.
-// (15)'s in place, add_weighted_stiffness below).
+// (15)'s in place, add_sample_terms below).
 // weights.size() must equal the number of tets.
 SparseMatrix weighted_stiffness(const TetMesh& mesh, const std::vector<Eigen::Matrix3d>& weights);
 // The same for W_t = weights[t] * I.
@@ -80,13 +80,17 @@ SparseMatrix hessian_matrix(const TetMesh& mesh);
 // selfadjointView<Eigen::Lower>()).
 enum class Stored { kAll, kLower };
 
-// A += w weighted_stiffness(mesh, weights) in place, from the tets of nonzero
-// weight only (the samples' tets, a small share of the domain's): A's pattern
-// must hold every entry those tets couple, as hessian_energy's two rings do
-// (std::logic_error otherwise); with kLower A holds its lower triangle.
-// The same values as adding the whole weighted stiffness, without building it.
-void add_weighted_stiffness(SparseMatrix& A, const TetMesh& mesh, const std::vector<double>& weights,
-                            double w, Stored stored = Stored::kAll);
+// The samples' terms of Eq. (15) added into A in place, from the tets that
+// hold samples (a small share of the domain's):
+//   A += gradient_weight G^T S^T S G + value_weight Phi^T Phi,
+// S and Phi of `locations` (locate_points on this mesh); returns G^T S^T N,
+// N stacking the samples' `normals`. A's pattern must hold every entry the
+// sampled tets couple, as hessian_energy's two rings or any one-ring pattern
+// do (std::logic_error otherwise); with kLower A holds its lower triangle.
+Eigen::VectorXd add_sample_terms(SparseMatrix& A, const TetMesh& mesh,
+                                 const std::vector<Location>& locations,
+                                 const std::vector<Vec3>& normals, double gradient_weight,
+                                 double value_weight, Stored stored = Stored::kAll);
 
 // The integrated squared Hessian of Eq. (15): H^T M~_V^-1 H (|V| x |V|,
 // two-ring sparsity), M~_V the vertex masses repeated for the 9 rows of each
@@ -122,9 +126,16 @@ Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::Sp
 // A B, column by column in parallel and deterministic.
 SparseMatrix sparse_product(const SparseMatrix& A, const SparseMatrix& B);
 
-// Locates every point in the domain (Domain::locate). Throws InputError
-// naming how many points fall outside the domain (and the first of them).
-std::vector<Location> locate_points(const Domain& domain, const std::vector<Vec3>& points);
+// The order in which locate_points visits the points (CGAL's spatial sort:
+// each near the one before it). A caller that locates the same points in
+// several domains computes it once and passes it on.
+std::vector<std::size_t> location_order(const std::vector<Vec3>& points);
+
+// Locates every point in the domain (Domain::locate), in `order` (a
+// location_order of these points; computed here when null). Throws
+// InputError naming how many points fall outside the domain (and the first).
+std::vector<Location> locate_points(const Domain& domain, const std::vector<Vec3>& points,
+                                    const std::vector<std::size_t>* order = nullptr);
 
 // The barycentric sampling matrix Phi (|X| x |V|): row p holds the
 // barycentric coordinates of point p at the vertices of its tet, so that

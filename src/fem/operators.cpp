@@ -137,64 +137,6 @@ SparseMatrix weighted_stiffness(const TetMesh& mesh, const std::vector<double>& 
   return stiffness_of(mesh, [&](int t, const Vec3& grad) -> Vec3 { return weights[t] * grad; });
 }
 
-void add_weighted_stiffness(SparseMatrix& A, const TetMesh& mesh, const std::vector<double>& weights,
-                            double w, Stored stored) {
-  const int n = static_cast<int>(mesh.vertices.size());
-  if (weights.size() != mesh.tets.size())
-    throw std::invalid_argument("add_weighted_stiffness: one weight per tet is required");
-  if (A.rows() != n || A.cols() != n || !A.isCompressed())
-    throw std::invalid_argument("add_weighted_stiffness: A must be a compressed |V| x |V| matrix");
-  // The weighted tets around each vertex, in increasing order (the order
-  // weighted_stiffness sums them in).
-  std::vector<long long> offsets(static_cast<std::size_t>(n) + 1, 0);
-  for (std::size_t t = 0; t < weights.size(); ++t)
-    if (weights[t] != 0)
-      for (int v : mesh.tets[t]) ++offsets[static_cast<std::size_t>(v) + 1];
-  for (int v = 0; v < n; ++v) offsets[v + 1] += offsets[v];
-  std::vector<int> star(static_cast<std::size_t>(offsets[n]));
-  {
-    std::vector<long long> cursor(offsets.begin(), offsets.end() - 1);
-    for (std::size_t t = 0; t < weights.size(); ++t) {
-      if (weights[t] != 0)
-        for (int v : mesh.tets[t]) star[static_cast<std::size_t>(cursor[v]++)] = static_cast<int>(t);
-      detail::poll_every(t);  // the run's cancellation
-    }
-  }
-  const bool lower = stored == Stored::kLower;
-  const int* outer = A.outerIndexPtr();
-  const int* inner = A.innerIndexPtr();
-  double* values = A.valuePtr();
-  detail::polled_parallel_ranges(n, [&](const tbb::blocked_range<int>& range) {
-    // Column j's sums per row, in the order of weighted_stiffness (its
-    // rows: the vertices of the weighted tets around j, a few dozen).
-    std::vector<std::pair<int, double>> sums;
-    for (int j = range.begin(); j < range.end(); ++j) {
-      sums.clear();
-      for (long long s = offsets[j]; s < offsets[j + 1]; ++s) {
-        const int t = star[static_cast<std::size_t>(s)];
-        const TetGradients g = detail::tet_gradients(mesh, t);
-        const Vec3 wj = weights[t] * g.grad[detail::local_index(mesh.tets[t], j)];
-        for (int i = 0; i < 4; ++i) {
-          const int row = mesh.tets[t][i];
-          if (lower && row < j) continue;
-          std::size_t k = 0;
-          while (k < sums.size() && sums[k].first != row) ++k;
-          if (k == sums.size()) sums.emplace_back(row, 0.0);
-          sums[k].second += g.grad[i].dot(wj);
-        }
-      }
-      const int* first = inner + outer[j];
-      const int* last = inner + outer[j + 1];
-      for (const auto& [row, sum] : sums) {
-        const int* at = std::lower_bound(first, last, row);
-        if (at == last || *at != row)
-          throw std::logic_error("add_weighted_stiffness: A's pattern misses an entry");
-        values[at - inner] += w * sum;
-      }
-    }
-  });
-}
-
 // Eq. (11): (H f)_v,ab = sum_t vol_t d_b(phi_v) d_a(f), i.e. column w holds
 // vol_t d_b(phi_v) d_a(phi_w) at row (3a + b) |V| + v.
 namespace detail {

@@ -15,18 +15,28 @@
 
 namespace pdd {
 
-std::vector<Location> locate_points(const Domain& domain, const std::vector<Vec3>& points) {
+std::vector<std::size_t> location_order(const std::vector<Vec3>& points) {
+  std::vector<detail::Point> cgal_points;
+  cgal_points.reserve(points.size());
+  for (const Vec3& p : points) cgal_points.push_back(detail::to_point(p));
+  return detail::spatial_order(cgal_points);
+}
+
+std::vector<Location> locate_points(const Domain& domain, const std::vector<Vec3>& points,
+                                    const std::vector<std::size_t>* given_order) {
   const int n = static_cast<int>(points.size());
   std::vector<Location> locations(n);
-  // In spatial order (CGAL's Hilbert sort), each point located from the tet
-  // of the one before it: a walk of a few steps instead of one across the
-  // domain. Blocks of a fixed size start afresh, so that the locations do not
-  // depend on the thread count; Domain::locate only reads the triangulation
-  // (CGAL's walk keeps its random state local), so blocks run concurrently.
-  std::vector<detail::Point> cgal_points;
-  cgal_points.reserve(n);
-  for (const Vec3& p : points) cgal_points.push_back(detail::to_point(p));
-  const std::vector<std::size_t> order = detail::spatial_order(cgal_points);
+  // In spatial order, each point located from the tet of the one before it:
+  // a walk of a few steps instead of one across the domain. Blocks of a fixed
+  // size start afresh, so that the locations do not depend on the thread
+  // count; Domain::locate only reads the triangulation (CGAL's walk keeps its
+  // random state local), so blocks run concurrently.
+  std::vector<std::size_t> own_order;
+  if (!given_order) own_order = location_order(points);
+  const std::vector<std::size_t>& order = given_order ? *given_order : own_order;
+  if (order.size() != points.size())
+    throw std::invalid_argument("locate_points: the order has " + std::to_string(order.size()) +
+                                " entries for " + std::to_string(points.size()) + " points");
   constexpr int kBlock = 256;
   const auto& tets = domain.tets();
   detail::polled_parallel_for(

@@ -29,7 +29,7 @@ class PoissonSolver final : public ImplicitSolver {
     stats_ = SolverStats();
     const Problem p = make_problem(domain, points, "Poisson solver",
                                    "the Poisson solver needs oriented normals (Eq. 13)",
-                                   take_release_triangulation());
+                                   {take_release_triangulation(), SamplingMatrix::kBuild, &order_});
     const NearestNeighbors tree(points.points);  // the samples' one tree for the three below
     const double sigma = options_.kernel_size > 0
                              ? options_.kernel_size
@@ -96,6 +96,7 @@ class PoissonSolver final : public ImplicitSolver {
   PoissonOptions options_;
   LinearSolver linear_;
   SolverStats stats_;
+  SampleOrder order_;
 };
 
 }  // namespace

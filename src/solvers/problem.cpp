@@ -7,12 +7,29 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cstring>
 #include <stdexcept>
 
 namespace pdd::detail {
 
+const std::vector<std::size_t>& SampleOrder::of(const std::vector<Vec3>& points) {
+  // FNV-1a over the coordinates' bits, with the count.
+  std::uint64_t key = 14695981039346656037ull ^ points.size();
+  for (const Vec3& p : points)
+    for (int k = 0; k < 3; ++k) {
+      std::uint64_t bits;
+      std::memcpy(&bits, &p[k], sizeof bits);
+      key = (key ^ bits) * 1099511628211ull;
+    }
+  if (key != key_ || order_.size() != points.size()) {
+    order_ = location_order(points);
+    key_ = key;
+  }
+  return order_;
+}
+
 Problem make_problem(const Domain& domain, const PointSet& points, const std::string& solver,
-                     const std::string& why_normals, bool release_triangulation) {
+                     const std::string& why_normals, const ProblemOptions& options) {
   if (points.size() == 0) throw InputError(solver + ": the point set is empty");
   require_normals(points, solver, why_normals);
   if (points.normals.size() != points.points.size())
@@ -20,14 +37,17 @@ Problem make_problem(const Domain& domain, const PointSet& points, const std::st
                      std::to_string(points.points.size()) + " points");
   Problem p{domain.mesh(), {}, {}, {}};
   try {
-    p.locations = locate_points(domain, points.points);
+    p.locations = locate_points(domain, points.points,
+                                options.order ? &options.order->of(points.points) : nullptr);
   } catch (const InputError& e) {
     throw InputError(solver + ": " + e.what());
   }
-  if (release_triangulation) domain.release_triangulation();
+  if (options.release_triangulation) domain.release_triangulation();
   poll();
-  sampling_matrix(p.mesh, p.locations).swap(p.Phi);  // Eigen 3.4's SparseMatrix: = would copy
-  poll();
+  if (options.phi == SamplingMatrix::kBuild) {
+    sampling_matrix(p.mesh, p.locations).swap(p.Phi);  // Eigen 3.4's SparseMatrix: = would copy
+    poll();
+  }
   Eigen::AlignedBox3d box;
   for (const Vec3& x : points.points) box.extend(x);
   p.length = box.sizes().maxCoeff();

@@ -72,7 +72,7 @@ class SpectralSolver final : public ImplicitSolver {
     Problem p =
         make_problem(domain, points, "spectral solver",
                      "the spectral solver needs normals, oriented or not (Eq. 16)",
-                     take_release_triangulation());
+                     {take_release_triangulation(), SamplingMatrix::kBuild, &order_});
     const double nx = static_cast<double>(p.num_points);
     const std::size_t nt = p.mesh.tets.size();
 
@@ -196,6 +196,7 @@ class SpectralSolver final : public ImplicitSolver {
   SpectralOptions options_;
   LinearSolver linear_;
   SolverStats stats_;
+  SampleOrder order_;
 };
 
 }  // namespace

@@ -26,7 +26,6 @@ SsdOptions resolved(SsdOptions options, const Problem& p, const PointSet& points
 LinearSystem ssd_system(const Problem& p, const SsdOptions& options, Stored stored) {
   const bool lower = stored == Stored::kLower;
   const double nx = static_cast<double>(p.num_points);
-  const std::size_t nt = p.mesh.tets.size();
   const double beta = options.beta / nx;
   const double alpha = options.alpha / (p.length * p.length * nx);
 
@@ -39,37 +38,20 @@ LinearSystem ssd_system(const Problem& p, const SsdOptions& options, Stored stor
     hessian_energy(p.mesh, stored).swap(A);  // Eigen 3.4's SparseMatrix has no move: = would copy
     poll();
     A *= options.gamma * p.length * p.length / tet_volumes(p.mesh).sum();  // H^T M~_V^-1 H
-    poll();
+  } else {
+    // No Hessian term: the one-ring pattern, zero, to take the samples' terms.
+    SparseMatrix pattern = cotangent_laplacian(p.mesh);
+    if (lower) SparseMatrix(pattern.triangularView<Eigen::Lower>()).swap(pattern);
+    pattern.makeCompressed();
+    pattern.coeffs().setZero();
+    A.swap(pattern);
   }
-
+  poll();
   // S^T S counts the samples in each tet and S^T N sums their normals, so
-  // G^T S^T S G = G^T diag(count_t I) G and G^T S^T N = G^T (sum of n_p per tet):
-  // b_v = beta / |X| sum over the tets t of v of grad(phi_v)|_t . (sum of n_p in t).
-  Eigen::VectorXd b;
-  {
-    std::vector<double> count(nt, 0.0);
-    std::vector<Vec3> normal_sum(nt, Vec3::Zero());
-    for (std::size_t i = 0; i < p.num_points; ++i) {
-      const int t = p.locations[i].tet;
-      count[t] += 1;
-      normal_sum[t] += p.normals[i];
-      poll_every(i);
-    }
-    b = beta * gradient_transpose_times(p.mesh, normal_sum);
-    std::vector<Vec3>().swap(normal_sum);
-    if (options.gamma > 0) {
-      // Into the Hessian term's two rings, from the samples' tets alone.
-      add_weighted_stiffness(A, p.mesh, count, beta, stored);
-    } else {
-      const SparseMatrix stiffness = weighted_stiffness(p.mesh, count);
-      if (lower)
-        A = beta * SparseMatrix(stiffness.triangularView<Eigen::Lower>());
-      else
-        A = beta * stiffness;
-    }
-    poll();
-  }
-  add_to(A, gram_matrix(p.Phi, Eigen::VectorXd::Ones(p.Phi.rows())), alpha, lower);
+  // G^T S^T S G = G^T diag(count_t I) G and G^T S^T N = G^T (sum of n_p per tet),
+  // summed with Phi^T Phi from the samples' tets alone into A's pattern.
+  Eigen::VectorXd b = beta * add_sample_terms(A, p.mesh, p.locations, p.normals, beta, alpha, stored);
+  poll();
   LinearSystem system;
   system.A.swap(A);
   system.b = std::move(b);
@@ -90,7 +72,7 @@ class SsdSolver final : public ImplicitSolver {
     const auto start = Clock::now();
     stats_ = SolverStats();
     Problem p = make_problem(domain, points, "SSD solver", kWhyNormals,
-                             take_release_triangulation());
+                             {take_release_triangulation(), SamplingMatrix::kSkip, &order_});
     const SsdOptions options = resolved(options_, p, points);
     const LinearSystem system = ssd_system(p, options, Stored::kLower);
     p.release_samples();
@@ -121,6 +103,7 @@ class SsdSolver final : public ImplicitSolver {
   SsdOptions options_;
   LinearSolver linear_;
   SolverStats stats_;
+  SampleOrder order_;
 };
 
 }  // namespace
@@ -130,7 +113,8 @@ class SsdSolver final : public ImplicitSolver {
 namespace pdd {
 
 LinearSystem ssd_system(const Domain& domain, const PointSet& points, const SsdOptions& options) {
-  const detail::Problem p = detail::make_problem(domain, points, "SSD system", detail::kWhyNormals);
+  const detail::Problem p = detail::make_problem(domain, points, "SSD system", detail::kWhyNormals,
+                                                 {false, detail::SamplingMatrix::kSkip, nullptr});
   return detail::ssd_system(p, detail::resolved(options, p, points), Stored::kAll);
 }
 
