@@ -404,21 +404,25 @@ TEST(Sampling, LocatedFromTheirNeighboursPointsLieInTheirTets) {
   const Domain domain(corners_and_inside);
   std::vector<Vec3> points;
   for (int i = 0; i < 5000; ++i) points.emplace_back(u(rng), u(rng), u(rng));
-  const std::vector<Location> loc = locate_points(domain, points);
   const auto& x = domain.vertices();
   std::vector<double> values;  // a function that differs from tet to tet
   for (const Vec3& v : x) values.push_back(v.squaredNorm());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    ASSERT_GE(loc[i].tet, 0);
-    const auto& tet = domain.tets()[loc[i].tet];
-    Vec3 p = Vec3::Zero();
-    for (int k = 0; k < 4; ++k) {
-      EXPECT_GE(loc[i].barycentric[k], -1e-12);
-      p += loc[i].barycentric[k] * x[tet[k]];
+  // With CGAL's triangulation, then walking the tets' arrays once it is released.
+  for (const bool released : {false, true}) {
+    if (released) domain.release_triangulation();
+    const std::vector<Location> loc = locate_points(domain, points);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      ASSERT_GE(loc[i].tet, 0);
+      const auto& tet = domain.tets()[loc[i].tet];
+      Vec3 p = Vec3::Zero();
+      for (int k = 0; k < 4; ++k) {
+        EXPECT_GE(loc[i].barycentric[k], -1e-12);
+        p += loc[i].barycentric[k] * x[tet[k]];
+      }
+      EXPECT_LT((p - points[i]).norm(), 1e-12) << (released ? "released" : "");
+      const Location alone = domain.locate(points[i]);
+      EXPECT_NEAR(domain.interpolate(loc[i], values), domain.interpolate(alone, values), 1e-12);
     }
-    EXPECT_LT((p - points[i]).norm(), 1e-12);
-    const Location alone = domain.locate(points[i]);
-    EXPECT_NEAR(domain.interpolate(loc[i], values), domain.interpolate(alone, values), 1e-12);
   }
 }
 

@@ -95,6 +95,9 @@ class Domain {
   // The same, walking from the tets of `near_vertex`: a few steps when p is
   // close to it (a vertex's new position), instead of a walk across the domain.
   Location locate(const Vec3& p, int near_vertex) const;
+  // The same, walking from where a nearby point was located (near.tet >= 0):
+  // points located in spatial order, each from the one before.
+  Location locate(const Vec3& p, const Location& near) const;
   // Value of the piecewise-linear interpolant of `values` at p; p must lie in
   // the domain (throws std::out_of_range otherwise).
   double interpolate(const Vec3& p, const std::vector<double>& values) const;

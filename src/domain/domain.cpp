@@ -92,6 +92,11 @@ Location Domain::locate(const Vec3& p, int near_vertex) const {
                         p);
 }
 
+Location Domain::locate(const Vec3& p, const Location& near) const {
+  if (impl_->walkable()) return impl_->walk(p, near.tet);
+  return locate(p, impl_->mesh.tets.at(near.tet)[0]);
+}
+
 double Domain::interpolate(const Vec3& p, const std::vector<double>& values) const {
   impl_->restore();
   const auto c = impl_->finite_cell_containing(p);

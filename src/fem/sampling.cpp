@@ -38,15 +38,14 @@ std::vector<Location> locate_points(const Domain& domain, const std::vector<Vec3
     throw std::invalid_argument("locate_points: the order has " + std::to_string(order.size()) +
                                 " entries for " + std::to_string(points.size()) + " points");
   constexpr int kBlock = 256;
-  const auto& tets = domain.tets();
   detail::polled_parallel_for(
       (n + kBlock - 1) / kBlock,
       [&](int b) {
-        int near = -1;
+        const Location* near = nullptr;
         for (int k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k) {
           const std::size_t i = order[k];
-          locations[i] = near < 0 ? domain.locate(points[i]) : domain.locate(points[i], near);
-          if (locations[i].tet >= 0) near = tets[locations[i].tet][0];
+          locations[i] = near ? domain.locate(points[i], *near) : domain.locate(points[i]);
+          if (locations[i].tet >= 0) near = &locations[i];
         }
       },
       128);
