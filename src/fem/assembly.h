@@ -107,7 +107,7 @@ void assemble_column(const TetMesh& mesh, const VertexStars& stars,
 template <int Blocks, bool Interleaved = false, class ColumnFn>
 SparseMatrix assemble_by_columns(const TetMesh& mesh, const VertexStars& stars, ColumnFn column) {
   const int n = static_cast<int>(mesh.vertices.size());
-  const std::vector<std::vector<int>> rings = one_rings(mesh, stars);
+  const OneRings rings = one_rings(mesh, stars);
   SparseMatrix A(static_cast<Eigen::Index>(Blocks) * n, n);
   std::vector<long long> start(n + 1, 0);
   for (int j = 0; j < n; ++j)
@@ -126,7 +126,7 @@ SparseMatrix assemble_by_columns(const TetMesh& mesh, const VertexStars& stars, 
     double local[4 * Blocks];
     std::vector<int>& position = positions.local();
     for (int j = r.begin(); j < r.end(); ++j) {
-      const std::vector<int>& ring = rings[j];
+      const Ring ring = rings[j];
       const int m = static_cast<int>(ring.size());
       for (int k = 0; k < m; ++k) position[ring[k]] = k;
       int* rows = inner + start[j];

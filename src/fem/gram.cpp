@@ -329,7 +329,7 @@ SparseMatrix hessian_energy(const TetMesh& mesh, Stored stored) {
   using namespace detail;
   const int n = static_cast<int>(mesh.vertices.size());
   const VertexStars stars = vertex_stars(mesh);
-  const std::vector<std::vector<int>> rings = one_rings(mesh, stars);
+  const OneRings rings = one_rings(mesh, stars);
   poll();  // the run's cancellation
   const Eigen::VectorXd inverse_mass = vertex_masses(mesh).cwiseInverse();
   // The assembled columns of H: column of vertex u at h + h_start[slot_of[u]],
@@ -358,7 +358,7 @@ SparseMatrix hessian_energy(const TetMesh& mesh, Stored stored) {
     tbb::parallel_for(std::size_t(0), needed.size(), [&](std::size_t i) {
       double local[36];
       std::vector<int>& position = positions.local();
-      const std::vector<int>& ring = rings[needed[i]];
+      const Ring ring = rings[needed[i]];
       const int m = static_cast<int>(ring.size());
       for (int k = 0; k < m; ++k) position[ring[k]] = k;
       assemble_column<9, true>(mesh, stars, position, needed[i], m, column, local,
@@ -392,7 +392,7 @@ SparseMatrix hessian_energy(const TetMesh& mesh, Stored stored) {
         const double* hj = h.data() + h_start[slot_of[j]];  // (H_v)_{ab, j} at 3a + b
         for (const int v : rings[j]) {
           const double w = inverse_mass[v];
-          const std::vector<int>& ring = rings[v];
+          const Ring ring = rings[v];
           const double* hv = h.data() + h_start[slot_of[v]];
           // A ring is sorted: with `lower`, its rows >= j only.
           const std::size_t first =

@@ -9,13 +9,10 @@ QuadraticAccumulator::QuadraticAccumulator(const Domain& domain) {
   const TetMesh& mesh = domain.mesh();
   const int n = static_cast<int>(mesh.vertices.size());
   stars_ = detail::vertex_stars(mesh);
-  const std::vector<std::vector<int>> rings = detail::one_rings(mesh, stars_);
+  detail::OneRings rings = detail::one_rings(mesh, stars_);
   detail::poll();  // the run's cancellation
-  offsets_.assign(n + 1, 0);
-  for (int v = 0; v < n; ++v) offsets_[v + 1] = offsets_[v] + static_cast<int>(rings[v].size());
-  rows_.resize(offsets_[n]);
-  for (int v = 0; v < n; ++v)
-    std::copy(rings[v].begin(), rings[v].end(), rows_.begin() + offsets_[v]);
+  offsets_.swap(rings.offsets);
+  rows_.swap(rings.vertices);
   isotropic_.assign(rows_.size(), 0.0);
   coupled_index_.assign(rows_.size(), -1);
   b = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(n));
