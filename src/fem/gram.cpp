@@ -33,7 +33,32 @@ struct Scratch {
   std::vector<int> marker;
   std::vector<double> accumulator;
   std::vector<int> touched;
+
+  // Column j's sums from values(j, add), its rows left sorted in `touched`
+  // (the marker holds the column: each column is summed once per pass).
+  template <class Values>
+  void sum_column(int j, Values& values) {
+    touched.clear();
+    values(j, [&](int i, double x) {
+      if (marker[i] != j) {
+        marker[i] = j;
+        accumulator[i] = 0.0;
+        touched.push_back(i);
+      }
+      accumulator[i] += x;
+    });
+    std::sort(touched.begin(), touched.end());
+  }
 };
+
+tbb::enumerable_thread_specific<Scratch> per_thread_scratch(int rows) {
+  return tbb::enumerable_thread_specific<Scratch>([rows] {
+    Scratch s;
+    s.marker.assign(rows, -1);
+    s.accumulator.assign(rows, 0.0);
+    return s;
+  });
+}
 
 // Builds an n x n matrix column by column. pattern(j, visit) calls visit(i)
 // for every row i of column j (repeats allowed); values(j, add) calls
@@ -63,12 +88,7 @@ SparseMatrix accumulate_columns(int n, Pattern pattern, Values values) {
 template <class Out, class Pattern, class Values, class Prepare>
 Eigen::SparseMatrix<Out> accumulate_columns_as(int rows, int n, Pattern pattern, Values values,
                                                const std::vector<int>* order, Prepare prepare) {
-  tbb::enumerable_thread_specific<Scratch> scratch([rows] {
-    Scratch s;
-    s.marker.assign(rows, -1);
-    s.accumulator.assign(rows, 0.0);
-    return s;
-  });
+  tbb::enumerable_thread_specific<Scratch> scratch = per_thread_scratch(rows);
   std::vector<long long> start(n + 1, 0);
   // Sliced, with the run's cancellation polled in between: a product takes seconds at 1M.
   detail::polled_parallel_for(n, [&](int j) {
@@ -96,16 +116,7 @@ Eigen::SparseMatrix<Out> accumulate_columns_as(int rows, int n, Pattern pattern,
 
   auto fill = [&](int j) {
     Scratch& s = scratch.local();
-    s.touched.clear();
-    values(j, [&](int i, double x) {
-      if (s.marker[i] != j) {
-        s.marker[i] = j;
-        s.accumulator[i] = 0.0;
-        s.touched.push_back(i);
-      }
-      s.accumulator[i] += x;
-    });
-    std::sort(s.touched.begin(), s.touched.end());
+    s.sum_column(j, values);
     long long out = start[j];
     for (int i : s.touched) {
       r_inner[out] = i;
@@ -129,6 +140,63 @@ Eigen::SparseMatrix<Out> accumulate_columns_as(int rows, int n, Pattern pattern,
     });
     detail::poll();
   }
+  return result;
+}
+
+// The same in one pass, for products whose columns cost more to sum than
+// their entries weigh (galerkin_product: each coarse column sums a few
+// hundred columns of the fine matrix, and the two passes above sum each
+// twice): each column is summed once and kept, in chunks of columns, until
+// all are counted, then copied into the result (a transient of the result's
+// size). Columns in increasing order; the same result as the two passes.
+template <class Out, class Values>
+Eigen::SparseMatrix<Out> accumulate_columns_once(int rows, int n, Values values) {
+  tbb::enumerable_thread_specific<Scratch> scratch = per_thread_scratch(rows);
+  constexpr int kChunk = 256;  // columns
+  struct Chunk {
+    std::vector<int> count, inner;
+    std::vector<Out> value;
+  };
+  const int chunks = (n + kChunk - 1) / kChunk;
+  std::vector<Chunk> kept(static_cast<std::size_t>(chunks));
+  detail::polled_parallel_for(
+      chunks,
+      [&](int c) {
+        Scratch& s = scratch.local();
+        Chunk& k = kept[static_cast<std::size_t>(c)];
+        const int first = c * kChunk, last = std::min(n, first + kChunk);
+        for (int j = first; j < last; ++j) {
+          s.sum_column(j, values);
+          k.count.push_back(static_cast<int>(s.touched.size()));
+          for (int i : s.touched) {
+            k.inner.push_back(i);
+            k.value.push_back(static_cast<Out>(s.accumulator[i]));
+          }
+        }
+        k.inner.shrink_to_fit();  // grown by doubling: up to twice the entries
+        k.value.shrink_to_fit();
+      },
+      128);
+  std::vector<long long> start(static_cast<std::size_t>(chunks) + 1, 0);
+  for (int c = 0; c < chunks; ++c)
+    start[c + 1] = start[c] + static_cast<long long>(kept[c].inner.size());
+  if (start[chunks] > std::numeric_limits<int>::max())
+    throw std::length_error("fem: product has more non-zeros than an int index can hold");
+  Eigen::SparseMatrix<Out> result(rows, n);
+  result.resizeNonZeros(static_cast<Eigen::Index>(start[chunks]));
+  int* outer = result.outerIndexPtr();
+  outer[0] = 0;
+  tbb::parallel_for(0, chunks, [&](int c) {
+    Chunk& k = kept[static_cast<std::size_t>(c)];
+    int at = static_cast<int>(start[c]);
+    for (std::size_t q = 0; q < k.count.size(); ++q) {
+      at += k.count[q];
+      outer[c * kChunk + static_cast<int>(q) + 1] = at;
+    }
+    std::copy(k.inner.begin(), k.inner.end(), result.innerIndexPtr() + start[c]);
+    std::copy(k.value.begin(), k.value.end(), result.valuePtr() + start[c]);
+    k = Chunk();
+  });
   return result;
 }
 
@@ -270,7 +338,7 @@ Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::Sp
       std::fill(f.marker.begin(), f.marker.end(), -1);
       f.call = 0;
     }
-    const int call = ++f.call;  // the pattern's pass and the values' reach each column
+    const int call = ++f.call;  // a marker per call
     auto add = [&](int i, double x) {
       if (f.marker[i] != call) {
         f.marker[i] = call;
@@ -294,21 +362,12 @@ Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::Sp
   const int m = static_cast<int>(P.cols());
   // The rows from `first(j)` on: all, or those on and below the diagonal.
   const auto first = [&](int j) { return result == Stored::kLower ? j : 0; };
-  return accumulate_columns_as<Out>(
-      m, m,
-      [&](int j, auto&& visit) {
-        const Fine& f = fine_column(j);
-        for (int i : f.touched)
-          for (int q = r.outer[i]; q < r.outer[i + 1]; ++q)
-            if (r.inner[q] >= first(j)) visit(r.inner[q]);
-      },
-      [&](int j, auto&& add) {
-        const Fine& f = fine_column(j);
-        for (int i : f.touched)
-          for (int q = r.outer[i]; q < r.outer[i + 1]; ++q)
-            if (r.inner[q] >= first(j)) add(r.inner[q], f.sum[i] * r.value[q]);
-      },
-      nullptr, [](const int*, const int*) {});
+  return accumulate_columns_once<Out>(m, m, [&](int j, auto&& add) {
+    const Fine& f = fine_column(j);
+    for (int i : f.touched)
+      for (int q = r.outer[i]; q < r.outer[i + 1]; ++q)
+        if (r.inner[q] >= first(j)) add(r.inner[q], f.sum[i] * r.value[q]);
+  });
 }
 template SparseMatrix galerkin_product<double, double>(const SparseMatrix&, const SparseMatrix&,
                                                        Stored, Stored);
