@@ -320,6 +320,45 @@ TEST(Sizing, MetIgnoresTheLargeFacetsAwayFromTheData) {
   EXPECT_FALSE(sizing_met(isofacet_area_stats(facets, targets, away)));
 }
 
+TEST(Sizing, MetCountsAQuadrangleByItsLargerTriangle) {
+  // The contour cuts a quadrangle along its shorter diagonal: a square of 5x
+  // its target gives two triangles of 2.5x and does not hold the stop back;
+  // a kite of the same area whose shorter diagonal leaves 4.5x on one side does,
+  // as a triangle of 5x does.
+  const auto quad = [](std::array<Vec3, 4> c) {
+    Isofacet q;
+    q.num_corners = 4;
+    q.corners = c;
+    for (int k = 1; k < 3; ++k) q.area += 0.5 * (c[k] - c[0]).cross(c[k + 1] - c[0]).norm();
+    return q;
+  };
+  const Isofacet square = quad({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)});
+  EXPECT_DOUBLE_EQ(square.area, 1.0);
+  EXPECT_DOUBLE_EQ(square.largest_triangle_area(), 0.5);
+  // Diagonals (0,2) of length 2 and (1,3) of length 1: cut along (1,3) into
+  // halves of areas 0.9 and 0.1.
+  const Isofacet kite = quad({Vec3(-1.8, 0, 0), Vec3(0, 0.5, 0), Vec3(0.2, 0, 0), Vec3(0, -0.5, 0)});
+  EXPECT_DOUBLE_EQ(kite.area, 1.0);
+  EXPECT_NEAR(kite.largest_triangle_area(), 0.9, 1e-12);
+  Isofacet triangle;
+  triangle.num_corners = 3;
+  triangle.area = 1.0;
+  EXPECT_DOUBLE_EQ(triangle.largest_triangle_area(), 1.0);
+
+  std::vector<Isofacet> facets(1000);
+  for (Isofacet& f : facets) f.area = 0.1;
+  std::vector<double> targets(1000, 0.2);
+  for (int i = 0; i < 3; ++i) facets[i] = square;
+  EXPECT_EQ(isofacet_area_stats(facets, targets).above_4, 0);
+  EXPECT_TRUE(sizing_met(isofacet_area_stats(facets, targets)));
+  for (int i = 0; i < 3; ++i) facets[i] = kite;
+  EXPECT_EQ(isofacet_area_stats(facets, targets).above_4, 3);
+  EXPECT_FALSE(sizing_met(isofacet_area_stats(facets, targets)));
+  for (int i = 0; i < 3; ++i) facets[i] = triangle;
+  EXPECT_EQ(isofacet_area_stats(facets, targets).above_4, 3);
+  EXPECT_FALSE(sizing_met(isofacet_area_stats(facets, targets)));
+}
+
 TEST(Sizing, RejectsBadParameters) {
   EXPECT_THROW(uniform_sizing(0.0), InputError);
   EXPECT_THROW(uniform_sizing(-1.0), InputError);

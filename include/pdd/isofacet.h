@@ -20,6 +20,9 @@ struct Isofacet {
   Vec3 normal = Vec3::Zero();    // n_{a_t}: unit gradient of f, pointing to f > 0
 
   bool is_triangle() const { return num_corners == 3; }
+  // The larger of the contour's triangles in this facet: a quadrangle is cut
+  // along its shorter diagonal, as marching tetrahedra cut it (§3.4).
+  double largest_triangle_area() const;
 };
 
 // The isofacet of every tet crossed by f = isovalue, in tet order. A value

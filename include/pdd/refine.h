@@ -16,9 +16,9 @@ struct IsofacetAreaStats {
   double max_area = 0;
   double mean_ratio = 0;  // mean of r_t = area / s
   double max_ratio = 0;
-  int above_4 = 0;        // facets with r_t >= 4, which rules 1-4 split
+  int above_4 = 0;        // facets whose larger contour triangle is 4x the target (sizing_met)
   int away = 0;           // facets away from the data (SizingField::target_areas_marking_away)
-  int above_4_away = 0;   // of them, with r_t >= 4
+  int above_4_away = 0;   // of them, counted in above_4
 };
 
 struct RefinementStats {
@@ -52,13 +52,15 @@ IsofacetAreaStats isofacet_area_stats(const std::vector<Isofacet>& facets,
 IsofacetAreaStats isofacet_area_stats(const Domain& domain, const SizingField& sizing);
 
 // The sizing field is met: isofacets are on average no larger than their
-// target and almost none of those near the data calls for a deterministic
-// split (r_t >= 4, rules 1-4). A few such facets are tolerated
-// (`max_fraction_above_4` of the facets near the data): the solve after each
-// pass moves the isosurface, so a handful of large facets reappear on every
-// iteration and a strict bound would add iterations that change nothing but
-// the vertex count. Away from the data (holes, a scan's unseen side) the
-// invented surface moves most between solves: its 4x facets are not counted.
+// target and almost none of those near the data gives the output a triangle
+// of 4x the target (a triangle facet with r_t >= 4, or a quadrangle whose
+// larger half, as the contour cuts it, is that large). A few such facets are
+// tolerated (`max_fraction_above_4` of the facets near the data): the solve
+// after each pass moves the isosurface, so a handful of large facets reappear
+// on every iteration and a strict bound would add iterations that change
+// nothing but the vertex count. Away from the data (holes, a scan's unseen
+// side) the invented surface moves most between solves: its 4x facets are
+// not counted.
 bool sizing_met(const IsofacetAreaStats& stats, double max_fraction_above_4 = 0.002);
 
 }  // namespace pdd

@@ -22,6 +22,16 @@ Vec3 tet_gradient(const std::array<Vec3, 4>& v, const std::array<double, 4>& f) 
 
 }  // namespace
 
+double Isofacet::largest_triangle_area() const {
+  if (num_corners != 4) return area;
+  const auto half = [&](int a, int b, int c) {
+    return 0.5 * (corners[b] - corners[a]).cross(corners[c] - corners[a]).norm();
+  };
+  if ((corners[0] - corners[2]).squaredNorm() <= (corners[1] - corners[3]).squaredNorm())
+    return std::max(half(0, 1, 2), half(0, 2, 3));
+  return std::max(half(0, 1, 3), half(1, 2, 3));
+}
+
 bool crosses_isovalue(const TetMesh& mesh, const std::vector<double>& f, int t, double isovalue) {
   int negative = 0;
   for (int v : mesh.tets[t]) negative += f[v] < isovalue;

@@ -31,9 +31,10 @@ IsofacetAreaStats isofacet_area_stats(const std::vector<Isofacet>& facets,
     s.max_area = std::max(s.max_area, facets[i].area);
     s.mean_ratio += ratio;
     s.max_ratio = std::max(s.max_ratio, ratio);
-    s.above_4 += ratio >= 4;
+    const bool large = facets[i].largest_triangle_area() >= 4 * targets[i];
+    s.above_4 += large;
     s.away += far;
-    s.above_4_away += far && ratio >= 4;
+    s.above_4_away += far && large;
   }
   if (s.count > 0) {
     s.mean_area /= s.count;
