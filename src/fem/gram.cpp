@@ -60,34 +60,16 @@ tbb::enumerable_thread_specific<Scratch> per_thread_scratch(int rows) {
   });
 }
 
-// Builds an n x n matrix column by column. pattern(j, visit) calls visit(i)
+// Builds a rows x n matrix column by column. pattern(j, visit) calls visit(i)
 // for every row i of column j (repeats allowed); values(j, add) calls
 // add(i, x) for every contribution x to entry (i, j), in an order that
 // depends only on j. Both run in parallel over j; the result is
-// deterministic.
-template <class Out, class Pattern, class Values, class Prepare>
-Eigen::SparseMatrix<Out> accumulate_columns_as(int rows, int n, Pattern pattern, Values values,
-                                               const std::vector<int>* order, Prepare prepare);
+// deterministic. The values are summed in slices of the columns taken in
+// `order` (all of 0..n-1; increasing when null), prepare(first, last) called
+// before each slice's columns [first, last): data that only those columns read.
 template <class Pattern, class Values, class Prepare>
 SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values,
                                 const std::vector<int>* order, Prepare prepare) {
-  return accumulate_columns_as<double>(rows, n, pattern, values, order, prepare);
-}
-template <class Pattern, class Values>
-SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values) {
-  return accumulate_columns(rows, n, pattern, values, nullptr, [](const int*, const int*) {});
-}
-template <class Pattern, class Values>
-SparseMatrix accumulate_columns(int n, Pattern pattern, Values values) {
-  return accumulate_columns(n, n, pattern, values);
-}
-// The same, with the values summed in slices of the columns taken in `order`
-// (all of 0..n-1; increasing when null), prepare(first, last) called before
-// each slice's columns [first, last): data that only those columns read.
-// The sums are in double; the result is stored in Out.
-template <class Out, class Pattern, class Values, class Prepare>
-Eigen::SparseMatrix<Out> accumulate_columns_as(int rows, int n, Pattern pattern, Values values,
-                                               const std::vector<int>* order, Prepare prepare) {
   tbb::enumerable_thread_specific<Scratch> scratch = per_thread_scratch(rows);
   std::vector<long long> start(n + 1, 0);
   // Sliced, with the run's cancellation polled in between: a product takes seconds at 1M.
@@ -107,11 +89,11 @@ Eigen::SparseMatrix<Out> accumulate_columns_as(int rows, int n, Pattern pattern,
   if (start[n] > std::numeric_limits<int>::max())
     throw std::length_error("fem: product has more non-zeros than an int index can hold");
 
-  Eigen::SparseMatrix<Out> result(rows, n);
+  SparseMatrix result(rows, n);
   result.resizeNonZeros(static_cast<Eigen::Index>(start[n]));
   for (int j = 0; j <= n; ++j) result.outerIndexPtr()[j] = static_cast<int>(start[j]);
   int* r_inner = result.innerIndexPtr();
-  Out* r_value = result.valuePtr();
+  double* r_value = result.valuePtr();
   for (auto& s : scratch) std::fill(s.marker.begin(), s.marker.end(), -1);
 
   auto fill = [&](int j) {
@@ -120,7 +102,7 @@ Eigen::SparseMatrix<Out> accumulate_columns_as(int rows, int n, Pattern pattern,
     long long out = start[j];
     for (int i : s.touched) {
       r_inner[out] = i;
-      r_value[out] = static_cast<Out>(s.accumulator[i]);
+      r_value[out] = s.accumulator[i];
       ++out;
     }
   };
@@ -142,13 +124,22 @@ Eigen::SparseMatrix<Out> accumulate_columns_as(int rows, int n, Pattern pattern,
   }
   return result;
 }
+template <class Pattern, class Values>
+SparseMatrix accumulate_columns(int rows, int n, Pattern pattern, Values values) {
+  return accumulate_columns(rows, n, pattern, values, nullptr, [](const int*, const int*) {});
+}
+template <class Pattern, class Values>
+SparseMatrix accumulate_columns(int n, Pattern pattern, Values values) {
+  return accumulate_columns(n, n, pattern, values);
+}
 
 // The same in one pass, for products whose columns cost more to sum than
 // their entries weigh (galerkin_product: each coarse column sums a few
 // hundred columns of the fine matrix, and the two passes above sum each
 // twice): each column is summed once and kept, in chunks of columns, until
 // all are counted, then copied into the result (a transient of the result's
-// size). Columns in increasing order; the same result as the two passes.
+// size). Columns in increasing order; the same result as the two passes, the
+// sums in double and stored in Out.
 template <class Out, class Values>
 Eigen::SparseMatrix<Out> accumulate_columns_once(int rows, int n, Values values) {
   tbb::enumerable_thread_specific<Scratch> scratch = per_thread_scratch(rows);
@@ -318,8 +309,7 @@ Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::Sp
   // then each fine row's sum mapped through its row of P. Mapping every term
   // of A p_j instead costs 2.5x the additions (4 per term).
   struct Fine {
-    std::vector<int> marker;  // the call that last reached each fine row
-    int call = 0;
+    std::vector<int> marker;  // the coarse column that last reached each fine row
     std::vector<double> sum;
     std::vector<int> touched;
   };
@@ -334,14 +324,9 @@ Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::Sp
   auto fine_column = [&](int j) -> Fine& {
     Fine& f = scratch.local();
     f.touched.clear();
-    if (f.call == std::numeric_limits<int>::max()) {
-      std::fill(f.marker.begin(), f.marker.end(), -1);
-      f.call = 0;
-    }
-    const int call = ++f.call;  // a marker per call
     auto add = [&](int i, double x) {
-      if (f.marker[i] != call) {
-        f.marker[i] = call;
+      if (f.marker[i] != j) {  // accumulate_columns_once reaches each column once
+        f.marker[i] = j;
         f.sum[i] = x;
         f.touched.push_back(i);
       } else {
