@@ -6,8 +6,9 @@
 
 #include <pdd/errors.h>
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Cholesky>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +16,8 @@
 #include <string>
 
 namespace pdd::detail {
+
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 template <class Scalar>
 BlockJacobi::BlockJacobi(const Eigen::SparseMatrix<Scalar>& A, double coupling, int max_block) {
@@ -27,28 +30,51 @@ BlockJacobi::BlockJacobi(const Eigen::SparseMatrix<Scalar>& A, double coupling, 
   const int* inner = A.innerIndexPtr();
   const Scalar* value = A.valuePtr();
 
-  // The strong couplings i > j of each column, found in parallel, then joined
-  // in column order (the groups do not depend on the thread count).
-  std::vector<std::vector<int>> strong(static_cast<std::size_t>(n));
-  if (coupling < 1 && max_block > 1)
+  // The strong couplings i > j, found in parallel (counted per column, then
+  // listed), joined strongest first while a group has room, so that a chain
+  // of them breaks at its weakest links. Ties go by (j, i): the groups do not
+  // depend on the thread count.
+  struct Coupling {
+    float strength;  // |a_ij| / sqrt(a_ii a_jj)
+    int j, i;
+  };
+  auto strength = [&](int j, int p) {
+    const int i = inner[p];
+    return i > j ? std::abs(static_cast<double>(value[p])) / std::sqrt(diagonal[i] * diagonal[j])
+                 : 0.0;
+  };
+  std::vector<int> strong_start(static_cast<std::size_t>(n) + 1, 0);
+  std::vector<Coupling> strong;
+  if (coupling < 1 && max_block > 1) {
     polled_parallel_for(n, [&](int j) {
-      for (int p = outer[j]; p < outer[j + 1]; ++p) {
-        const int i = inner[p];
-        if (i > j && std::abs(value[p]) > coupling * std::sqrt(diagonal[i] * diagonal[j]))
-          strong[static_cast<std::size_t>(j)].push_back(i);
-      }
+      int count = 0;
+      for (int p = outer[j]; p < outer[j + 1]; ++p) count += strength(j, p) > coupling;
+      strong_start[static_cast<std::size_t>(j) + 1] = count;
     });
+    for (int j = 0; j < n; ++j) strong_start[j + 1] += strong_start[j];
+    strong.resize(static_cast<std::size_t>(strong_start[n]));
+    polled_parallel_for(n, [&](int j) {
+      int at = strong_start[j];
+      for (int p = outer[j]; p < outer[j + 1]; ++p)
+        if (const double c = strength(j, p); c > coupling)
+          strong[static_cast<std::size_t>(at++)] = {static_cast<float>(c), j, inner[p]};
+    });
+    tbb::parallel_sort(strong.begin(), strong.end(), [](const Coupling& x, const Coupling& y) {
+      if (x.strength != y.strength) return x.strength > y.strength;
+      return x.j != y.j ? x.j < y.j : x.i < y.i;
+    });
+  }
   std::vector<int> parent = singletons(static_cast<std::size_t>(n));
   std::vector<int> size(static_cast<std::size_t>(n), 1);
-  for (int j = 0; j < n; ++j)
-    for (int i : strong[static_cast<std::size_t>(j)]) {
-      const int a = find_root(parent, i), b = find_root(parent, j);
-      if (a != b && size[a] + size[b] <= max_block) {
-        parent[a] = b;
-        size[b] += size[a];
-      }
+  for (const Coupling& c : strong) {
+    const int a = find_root(parent, c.i), b = find_root(parent, c.j);
+    if (a != b && size[a] + size[b] <= max_block) {
+      parent[a] = b;
+      size[b] += size[a];
     }
+  }
   strong = {};
+  strong_start = {};
   poll();
 
   // Groups numbered by their smallest unknown, members in increasing order.
@@ -79,9 +105,8 @@ BlockJacobi::BlockJacobi(const Eigen::SparseMatrix<Scalar>& A, double coupling, 
   inverse_diagonal_ = diagonal.cwiseInverse();
   for (int v : block_unknown_) inverse_diagonal_[v] = 0;
 
-  // Each block's inverse and inverse square root from its eigenpairs.
-  inverse_.resize(matrix_start_.back());
-  inverse_sqrt_.resize(matrix_start_.back());
+  // Each block's L^-1, L its Cholesky factor (invert() makes it the block's inverse).
+  dense_.resize(matrix_start_.back());
   std::vector<char> definite(groups, 1);
   tbb::parallel_for(std::size_t(0), groups, [&](std::size_t g) {
     const int* members = block_unknown_.data() + block_start_[g];
@@ -96,18 +121,13 @@ BlockJacobi::BlockJacobi(const Eigen::SparseMatrix<Scalar>& A, double coupling, 
         block(a, c) = at != last && *at == members[a] ? static_cast<double>(value[at - inner]) : 0.0;
       }
     }
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(block);
-    if (eigen.info() != Eigen::Success || !(eigen.eigenvalues().minCoeff() > 0)) {
+    const Eigen::LLT<Eigen::MatrixXd> llt(block);
+    if (llt.info() != Eigen::Success) {
       definite[g] = 0;
       return;
     }
-    const Eigen::VectorXd s = eigen.eigenvalues().cwiseSqrt().cwiseInverse();
-    const Eigen::MatrixXd& V = eigen.eigenvectors();
-    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-        inverse_sqrt_.data() + matrix_start_[g], m, m) = V * s.asDiagonal() * V.transpose();
-    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-        inverse_.data() + matrix_start_[g], m, m) =
-        V * s.cwiseAbs2().asDiagonal() * V.transpose();
+    Eigen::Map<RowMajor>(dense_.data() + matrix_start_[g], m, m) =
+        llt.matrixL().solve(Eigen::MatrixXd::Identity(m, m));
   });
   const auto bad = std::find(definite.begin(), definite.end(), 0);
   if (bad != definite.end())
@@ -120,26 +140,32 @@ BlockJacobi::BlockJacobi(const Eigen::SparseMatrix<Scalar>& A, double coupling, 
 template BlockJacobi::BlockJacobi(const SparseMatrix&, double, int);
 template BlockJacobi::BlockJacobi(const Eigen::SparseMatrix<float>&, double, int);
 
-template <bool kSqrt>
+template <BlockJacobi::Dense kind>
 void BlockJacobi::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
+  if ((kind == Dense::kInverse) != inverted_)
+    throw std::logic_error(inverted_ ? "BlockJacobi: the factors were inverted"
+                                     : "BlockJacobi: the blocks are not inverted yet");
   const Eigen::Index n = r.size();
   z.resize(n);
   for_blocks(n, [&](Eigen::Index begin, Eigen::Index end) {
     for (Eigen::Index i = begin; i < end; ++i)
-      z[i] = (kSqrt ? std::sqrt(inverse_diagonal_[i]) : inverse_diagonal_[i]) * r[i];
+      z[i] = (kind == Dense::kInverse ? inverse_diagonal_[i] : std::sqrt(inverse_diagonal_[i])) *
+             r[i];
   });
-  const std::vector<double>& dense = kSqrt ? inverse_sqrt_ : inverse_;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_blocks(), 1024),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       double local[kMaxBlock];
                       for (std::size_t g = range.begin(); g < range.end(); ++g) {
                         const int* members = block_unknown_.data() + block_start_[g];
                         const int m = block_start_[g + 1] - block_start_[g];
-                        const double* M = dense.data() + matrix_start_[g];
+                        const double* M = dense_.data() + matrix_start_[g];
                         for (int a = 0; a < m; ++a) local[a] = r[members[a]];
                         for (int a = 0; a < m; ++a) {
                           double s = 0;
-                          for (int c = 0; c < m; ++c) s += M[a * m + c] * local[c];
+                          if (kind == Dense::kFactorTranspose)
+                            for (int c = 0; c < m; ++c) s += M[c * m + a] * local[c];
+                          else
+                            for (int c = 0; c < m; ++c) s += M[a * m + c] * local[c];
                           z[members[a]] = s;
                         }
                       }
@@ -147,11 +173,27 @@ void BlockJacobi::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
 }
 
 void BlockJacobi::apply_inverse(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
-  apply<false>(r, z);
+  apply<Dense::kInverse>(r, z);
 }
 
-void BlockJacobi::apply_inverse_sqrt(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
-  apply<true>(r, z);
+void BlockJacobi::apply_inverse_factor(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
+  apply<Dense::kFactor>(r, z);
+}
+
+void BlockJacobi::apply_inverse_factor_transpose(const Eigen::VectorXd& r,
+                                                 Eigen::VectorXd& z) const {
+  apply<Dense::kFactorTranspose>(r, z);
+}
+
+void BlockJacobi::invert() {
+  if (inverted_) return;
+  tbb::parallel_for(std::size_t(0), num_blocks(), [&](std::size_t g) {
+    const int m = block_start_[g + 1] - block_start_[g];
+    Eigen::Map<RowMajor> block(dense_.data() + matrix_start_[g], m, m);
+    const RowMajor inverse = block.transpose() * block;
+    block = inverse;
+  });
+  inverted_ = true;
 }
 
 }  // namespace pdd::detail

@@ -24,9 +24,9 @@ SparseMatrix compressed_transpose(const SparseMatrix& M) {
   return t;
 }
 
-// The largest eigenvalue of D^-1 A (A symmetric positive definite, D the
-// smoother's block diagonal) from `steps` Lanczos steps on D^-1/2 A D^-1/2,
-// from a fixed start.
+// The largest eigenvalue of D^-1 A (A symmetric positive definite, D = L L^T
+// the smoother's block diagonal) from `steps` Lanczos steps on L^-1 A L^-T,
+// which has its spectrum, from a fixed start.
 template <class Product>
 double largest_eigenvalue(Eigen::Index n, const Product& multiply, const BlockJacobi& D,
                           int steps) {
@@ -37,9 +37,9 @@ double largest_eigenvalue(Eigen::Index n, const Product& multiply, const BlockJa
   std::vector<double> alpha, beta;
   double b = 0;
   for (int k = 0; k < steps; ++k) {
-    D.apply_inverse_sqrt(v, scaled);
+    D.apply_inverse_factor_transpose(v, scaled);
     multiply(scaled, scaled_product);
-    D.apply_inverse_sqrt(scaled_product, w);
+    D.apply_inverse_factor(scaled_product, w);
     const double a = deterministic_dot(w, v);
     alpha.push_back(a);
     w -= a * v + b * previous;
@@ -192,6 +192,7 @@ void Multigrid::setup(const SymmetricProduct<double>& times_A,
                             l.multiply(x, y);
                           },
                           l.smoother, 12);
+    l.smoother.invert();
     poll();
   };
   auto coarsest = [&](std::size_t k, Eigen::Index size) {

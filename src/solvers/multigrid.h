@@ -26,7 +26,7 @@ struct MultigridOptions {
   int smoothing_degree = 4;          // Chebyshev polynomial degree, before and after the
                                      // coarse correction
   std::size_t coarsest_size = 4000;  // levels this small are solved directly
-  double block_coupling = 0.5;       // unknowns coupled more strongly than this are smoothed
+  double block_coupling = 0.3;       // unknowns coupled more strongly than this are smoothed
                                      // together (block_jacobi.h; 1: plain Jacobi)
   int max_block = 16;                // in groups of at most this many
 };
