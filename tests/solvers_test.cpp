@@ -470,7 +470,7 @@ TEST_P(ProgressiveLevels, MultigridIterationsStayBoundedAndMatchCholmod) {
     // most 1.5x and one iteration more per refinement (at 7 to 15 iterations
     // the counts move by one or two with the domain's last digits), at most
     // 2x over both (issue 15's bound from 50k to 3M unknowns). Measured:
-    // Poisson sphere 8 -> 10 -> 6, torus 8 -> 9 -> 8; SSD sphere 9 -> 10 -> 12,
+    // Poisson sphere 8 -> 8 -> 6, torus 8 -> 9 -> 7; SSD sphere 9 -> 10 -> 12,
     // torus 6 -> 9 -> 11. A point smoother does not reach SSD's strongly
     // coupled pairs (block_jacobi.h): sphere 22 -> 27 -> 64, torus
     // 17 -> 26 -> 61; groups above 0.5 only leave the samples' ties to it:
