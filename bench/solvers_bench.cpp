@@ -7,7 +7,8 @@
 //   solvers_bench [--inputs scan.ply,...] [--sizes 50000,200000,1000000]
 //                 [--out bench/results/solvers.txt] [--direct-max 450000]
 //                 [--tolerance 1e-6] [--routes cg+multigrid,cholmod]
-//                 [--multigrid-variants 4:4,3:3]  (coarsening ratio:smoothing degree)
+//                 [--multigrid-variants 4:4:2,3:3]  (coarsening ratio:smoothing degree
+//                 [:on the finest level])
 //
 // Domains, either
 // - --inputs: the loop's own, from `pdd reconstruct` with default options on
@@ -170,10 +171,11 @@ Outcome run_cholmod(const std::vector<pdd::Domain>& domains, const pdd::PointSet
 }
 
 Outcome run_multigrid(const std::vector<pdd::Domain>& domains, const pdd::PointSet& samples,
-                      double tolerance, double ratio = 0, int degree = 0) {
+                      double tolerance, double ratio = 0, int degree = 0, int finest = 0) {
   pdd::SolverOptions o = ssd_options(samples, tolerance);
   if (ratio > 0) o.linear.coarsening_ratio = ratio;
   if (degree > 0) o.linear.smoothing_degree = degree;
+  if (finest > 0) o.linear.finest_smoothing_degree = finest;
   auto solver = pdd::make_solver(o);
   for (const pdd::Domain& d : domains) solver->solve(d, samples);
   const pdd::SolverStats& s = solver->stats();
@@ -358,7 +360,11 @@ int main(int argc, char** argv) {
   std::string out_path = "bench/results/solvers.txt";
   std::size_t direct_max = 450000;
   double tolerance = 1e-6;
-  std::vector<std::pair<double, int>> variants;  // --multigrid-variants ratio:degree,...
+  struct Variant {
+    double ratio;
+    int degree, finest;
+  };
+  std::vector<Variant> variants;  // --multigrid-variants ratio:degree[:finest],...
   std::string only;  // the routes to run, comma-separated between commas; all when empty
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--sizes")) {
@@ -379,9 +385,15 @@ int main(int argc, char** argv) {
     } else if (!std::strcmp(argv[i], "--multigrid-variants")) {
       std::stringstream ss(argv[i + 1]);
       std::string item;
-      while (std::getline(ss, item, ','))
-        variants.emplace_back(std::stod(item.substr(0, item.find(':'))),
-                              std::stoi(item.substr(item.find(':') + 1)));
+      while (std::getline(ss, item, ',')) {
+        std::stringstream fields(item);
+        std::string ratio, degree, finest;
+        std::getline(fields, ratio, ':');
+        std::getline(fields, degree, ':');
+        std::getline(fields, finest, ':');
+        variants.push_back({std::stod(ratio), std::stoi(degree),
+                            finest.empty() ? std::stoi(degree) : std::stoi(finest)});
+      }
     } else if (!std::strcmp(argv[i], "--routes")) {
       only = "," + std::string(argv[i + 1]) + ",";
     }
@@ -399,16 +411,18 @@ int main(int argc, char** argv) {
   };
   // The multigrid with other coarsening ratios and smoothing degrees, in turn with the default.
   std::vector<std::string> variant_names;
-  for (const auto& [ratio, degree] : variants) {
+  for (const auto& [ratio, degree, finest] : variants) {
     std::ostringstream name;
-    name << "mg r" << ratio << " d" << degree;
+    name << "mg r" << ratio << " d" << degree << " f" << finest;
     variant_names.push_back(name.str());
   }
   for (std::size_t k = 0; k < variants.size(); ++k) {
-    const auto [ratio, degree] = variants[k];
+    const auto [ratio, degree, finest] = variants[k];
     routes.push_back({variant_names[k].c_str(),
-                      [ratio, degree](const std::vector<pdd::Domain>& d, const pdd::PointSet& s,
-                                      double t) { return run_multigrid(d, s, t, ratio, degree); },
+                      [ratio, degree, finest](const std::vector<pdd::Domain>& d,
+                                              const pdd::PointSet& s, double t) {
+                        return run_multigrid(d, s, t, ratio, degree, finest);
+                      },
                       /*always=*/true});
   }
 

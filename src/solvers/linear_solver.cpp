@@ -66,9 +66,10 @@ namespace {
 
 const LinearSolverOptions& checked(const LinearSolverOptions& o) {
   if (!(o.cg_tolerance > 0) || o.cg_max_iterations < 1 || o.smoothing_degree < 1 ||
+      o.finest_smoothing_degree < 1 ||
       !(o.coarsening_ratio >= 1.3) || o.coarsest_size < 4 || !(o.block_coupling > 0))
     throw InputError(
-        "linear solver: the CG tolerance must be > 0, its iterations >= 1, the smoothing degree "
+        "linear solver: the CG tolerance must be > 0, its iterations >= 1, the smoothing degrees "
         ">= 1, the coarsening ratio >= 1.3, the coarsest level >= 4 vertices and the block "
         "coupling > 0");
   return o;
@@ -101,6 +102,7 @@ void LinearSolver::compute(const SparseMatrix& A, const std::vector<Vec3>& verti
   } else {
     MultigridOptions mg;
     mg.smoothing_degree = d.options.smoothing_degree;
+    mg.finest_smoothing_degree = d.options.finest_smoothing_degree;
     mg.coarsest_size = d.options.coarsest_size;
     mg.block_coupling = d.options.block_coupling;
     d.multigrid.setup(d.A, d.hierarchy.levels_for(vertices), mg);

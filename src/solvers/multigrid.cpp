@@ -78,6 +78,7 @@ struct Multigrid::Impl {
     SparseMatrix R;                     // P^T, stored by columns: the rows of P
     BlockJacobi smoother;               // D, the diagonal with blocks of strongly coupled unknowns
     double largest = 0;                 // of D^-1 A, a bound from Lanczos
+    int degree = 0;                     // of the smoothing polynomial
     // Work vectors (the V-cycle is const but reuses them: one at a time).
     mutable Eigen::VectorXd residual, correction, direction, product, scaled, coarse_rhs, coarse_x;
 
@@ -127,7 +128,7 @@ struct Multigrid::Impl {
         x[i] += d[i];
       }
     });
-    for (int k = 1; k < options.smoothing_degree; ++k) {
+    for (int k = 1; k < l.degree; ++k) {
       poll();  // the run's cancellation, inside a CG iteration (seconds at 1M)
       l.multiply(d, q);
       const double c1 = (2.0 * k - 1) / (2.0 * k + 3), c2 = (8.0 * k + 4) / (2.0 * k + 3) / rho;
@@ -184,6 +185,7 @@ void Multigrid::setup(const SymmetricProduct<double>& times_A,
   // The smoother's blocks and bound of each level but the coarsest (a lower
   // triangle gives BlockJacobi all it reads: the entries below the diagonal).
   auto finish = [&](Impl::Level& l, const auto& matrix) {
+    l.degree = &l == &d.levels[0] ? options.finest_smoothing_degree : options.smoothing_degree;
     l.smoother = BlockJacobi(matrix, options.block_coupling, options.max_block);
     poll();
     // Lanczos' estimate lies below the true value: a margin of 10 %.

@@ -24,7 +24,9 @@ namespace pdd::detail {
 
 struct MultigridOptions {
   int smoothing_degree = 4;          // Chebyshev polynomial degree, before and after the
-                                     // coarse correction
+                                     // coarse correction, on the coarse levels
+  int finest_smoothing_degree = 2;   // the same on the finest level, where a product costs
+                                     // as much as all coarse levels' together
   std::size_t coarsest_size = 4000;  // levels this small are solved directly
   double block_coupling = 0.3;       // unknowns coupled more strongly than this are smoothed
                                      // together (block_jacobi.h; 1: plain Jacobi)
