@@ -56,11 +56,12 @@ struct LinearSolverOptions {
                                // same topology) at half the iterations (docs/benchmarks.md)
   int cg_max_iterations = 1000;  // CG gives up (SolverError) after this many iterations
   double max_residual = 1e-6;   // a direct solve whose |A x - b| / |b| exceeds this is a SolverError
-  // Multigrid (docs/benchmarks.md, "Multigrid"): Chebyshev smoothing of this degree before and
-  // after each coarse correction, of the second on the finest level (whose products cost as
-  // much as all others: fewer per iteration beat the iterations they add); each coarse level
-  // has about 1 / coarsening_ratio (>= 1.3) of the vertices of the finer one; levels of
-  // coarsest_size vertices or fewer are factored.
+  // Multigrid (docs/benchmarks.md, "Multigrid"): Chebyshev smoothing before and after each
+  // coarse correction, of degree smoothing_degree on the coarse levels and
+  // finest_smoothing_degree on the finest (whose products cost as much as all the coarse
+  // levels': fewer per iteration beat the iterations they add); each coarse level has about
+  // 1 / coarsening_ratio (>= 1.3) of the vertices of the finer one; levels of coarsest_size
+  // vertices or fewer are factored.
   int smoothing_degree = 4;
   int finest_smoothing_degree = 2;
   double coarsening_ratio = 4;
