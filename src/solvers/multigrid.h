@@ -12,6 +12,7 @@
 #pragma once
 
 #include <pdd/fem.h>
+#include <pdd/solvers.h>
 
 #include "common/parallel_kernels.h"
 
@@ -22,15 +23,15 @@
 
 namespace pdd::detail {
 
+// Set from LinearSolverOptions (include/pdd/solvers.h), whose defaults these are.
 struct MultigridOptions {
-  int smoothing_degree = 4;          // Chebyshev polynomial degree, before and after the
-                                     // coarse correction, on the coarse levels
-  int finest_smoothing_degree = 2;   // the same on the finest level, where a product costs
-                                     // as much as all coarse levels' together
-  std::size_t coarsest_size = 4000;  // levels this small are solved directly
-  double block_coupling = 0.3;       // unknowns coupled more strongly than this are smoothed
-                                     // together (block_jacobi.h; 1: plain Jacobi)
-  int max_block = 16;                // in groups of at most this many
+  int smoothing_degree = LinearSolverOptions().smoothing_degree;  // Chebyshev polynomial degree,
+                      // before and after the coarse correction, on the coarse levels
+  int finest_smoothing_degree = LinearSolverOptions().finest_smoothing_degree;  // on the finest
+  std::size_t coarsest_size = LinearSolverOptions().coarsest_size;  // levels this small are
+                                                                    // solved directly
+  double block_coupling = LinearSolverOptions().block_coupling;  // block_jacobi.h; 1: Jacobi
+  int max_block = 16;  // the smoother's groups hold at most this many unknowns
 };
 
 class Multigrid {
