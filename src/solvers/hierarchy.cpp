@@ -11,7 +11,7 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <functional>
+#include <utility>
 #include <numeric>
 #include <stdexcept>
 
@@ -152,86 +152,65 @@ ProgressiveHierarchy::ProgressiveHierarchy(double ratio, std::size_t coarsest)
   if (!(ratio > 1)) throw std::invalid_argument("ProgressiveHierarchy: the ratio must be > 1");
 }
 
-std::vector<int> ProgressiveHierarchy::level(std::size_t n, double target) const {
-  // The earlier domain nearest the target, if within 30 % of it.
-  constexpr double kSnap = 1.3;
-  std::size_t begin = 0, end = n;  // the iteration whose new vertices the level shares
-  double best = kSnap;
-  for (std::size_t b : history_) {
-    const double off = std::max(b / target, target / b);
-    if (off < best) {
-      best = off;
-      begin = end = b;
-    }
-  }
-  if (begin == 0) {
-    for (std::size_t b : history_)
-      if (static_cast<double>(b) <= target) begin = b;
-    end = *std::upper_bound(history_.begin(), history_.end(), begin, std::less<>()) ;
-  }
-  std::vector<int> out;
-  out.reserve(static_cast<std::size_t>(target) + 16);
-  for (std::size_t v = 0; v < begin; ++v) out.push_back(static_cast<int>(v));
-  // A share of [begin, end) by a hash of the index: nested across shares.
-  const double share = (target - static_cast<double>(begin)) / static_cast<double>(end - begin);
-  for (std::size_t v = begin; v < end; ++v) {
-    std::uint64_t h = v + 0x9E3779B97F4A7C15ull;  // splitmix64
-    h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
-    h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
-    h ^= h >> 31;
-    if (static_cast<double>(h >> 11) * 0x1.0p-53 < share) out.push_back(static_cast<int>(v));
-  }
-  return out;
-}
-
 const std::vector<SparseMatrix>& ProgressiveHierarchy::levels_for(
     const std::vector<Vec3>& vertices) {
   const std::size_t n = vertices.size();
   // Earlier sizes that are not prefixes of this domain are forgotten.
   history_.erase(std::lower_bound(history_.begin(), history_.end(), n), history_.end());
-  history_.push_back(n);  // the top iteration's end, for level()
 
+  // Each vertex's key, uniform in [0, 1) by a hash of its index; a vertex
+  // drawn for a level has its key divided by the largest key drawn, so that
+  // the keys of each level's drawn vertices are uniform again.
+  std::vector<double> key(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    std::uint64_t h = v + 0x9E3779B97F4A7C15ull;  // splitmix64
+    h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
+    h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
+    h ^= h >> 31;
+    key[v] = static_cast<double>(h >> 11) * 0x1.0p-53;
+  }
   std::vector<std::vector<int>> chain(1);
   chain[0].resize(n);
   std::iota(chain[0].begin(), chain[0].end(), 0);
   while (chain.back().size() > coarsest_) {
-    std::vector<int> next =
-        level(n, std::max(4.0, static_cast<double>(chain.back().size()) / ratio_));
-    if (next.size() < 4 || next.size() >= chain.back().size()) break;
-    chain.push_back(std::move(next));
+    const std::vector<int>& finer = chain.back();
+    const auto size = static_cast<std::size_t>(
+        std::max(4.0, static_cast<double>(finer.size()) / ratio_));
+    if (size >= finer.size()) break;
+    // The largest earlier domain that fits is kept whole (the finer level
+    // holds it whole too); the rest is drawn from all the later vertices.
+    std::size_t kept = 0;
+    for (std::size_t b : history_)
+      if (b <= size) kept = b;
+    std::vector<int> drawn(std::lower_bound(finer.begin(), finer.end(), static_cast<int>(kept)),
+                           finer.end());
+    const std::size_t count = size - kept;
+    std::nth_element(drawn.begin(), drawn.begin() + static_cast<std::ptrdiff_t>(count), drawn.end(),
+                     [&](int a, int b) { return key[a] < key[b] || (key[a] == key[b] && a < b); });
+    drawn.resize(count);
+    double largest = 0;
+    for (int v : drawn) largest = std::max(largest, key[v]);
+    if (largest > 0)
+      for (int v : drawn) key[v] /= largest;
+    std::vector<int>& level = chain.emplace_back(kept);
+    std::iota(level.begin(), level.end(), 0);
+    std::sort(drawn.begin(), drawn.end());
+    level.insert(level.end(), drawn.begin(), drawn.end());
   }
 
-  // The top prolongation is new; the others are kept from the last call
-  // when it had the same pair of levels.
   std::vector<SparseMatrix> prolongations(chain.size() - 1);
   for (std::size_t k = 0; k + 1 < chain.size(); ++k) {
-    bool kept = false;
-    if (k > 0)
-      for (std::size_t m = 0; m + 1 < chain_.size(); ++m)
-        if (chain_[m] == chain[k] && chain_[m + 1] == chain[k + 1]) {
-          prolongations[k].swap(prolongations_[m]);  // Eigen 3.4's SparseMatrix has no move
-          kept = true;
-          break;
-        }
-    if (!kept) {
-      subset_prolongation(vertices, chain[k + 1], chain[k]).swap(prolongations[k]);
-      poll();
-    }
+    subset_prolongation(vertices, chain[k + 1], chain[k]).swap(prolongations[k]);
+    poll();
   }
-  chain_ = std::move(chain);
   prolongations_ = std::move(prolongations);
+  history_.push_back(n);
   return prolongations_;
 }
 
 void ProgressiveHierarchy::remember(std::size_t n) {
   history_.erase(std::lower_bound(history_.begin(), history_.end(), n), history_.end());
   history_.push_back(n);
-}
-
-std::vector<std::size_t> ProgressiveHierarchy::sizes() const {
-  std::vector<std::size_t> out;
-  for (const auto& l : chain_) out.push_back(l.size());
-  return out;
 }
 
 }  // namespace pdd::detail

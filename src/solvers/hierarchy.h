@@ -2,11 +2,11 @@
 // progressive loop itself. A refined domain keeps the indices of the domain
 // it was refined from and appends the new vertices (domain.h), so the
 // domains of the earlier iterations are prefixes of the current vertex
-// array. A coarse level is the Delaunay triangulation of such a prefix at the
-// vertices' current positions (the earlier domain, moved by the optimizer
-// since), or of a prefix plus an even share of the next iteration's
-// vertices where the iterations' sizes leave gaps; its prolongation
-// interpolates it barycentrically.
+// array. A coarse level is the largest earlier domain that fits in its size,
+// whole, and an even share of all the vertices added since (drawn by a hash
+// of their index), so that the regions the last refinements filled coarsen
+// too; a level is the Delaunay triangulation of its vertices at their
+// current positions, and its prolongation interpolates it barycentrically.
 #pragma once
 
 #include <pdd/fem.h>
@@ -30,34 +30,25 @@ SparseMatrix subset_prolongation(const std::vector<Vec3>& vertices, const std::v
 // from the last.
 class ProgressiveHierarchy {
  public:
-  // Each coarse level has about 1 / ratio of the vertices of the next finer
-  // one: an earlier domain when one has within 30 % of that size, else an
-  // earlier domain and the share of the next one's new vertices that makes
-  // up the size (picked by a hash of their index, so that they spread over
-  // where that iteration refined). No level has fewer than `coarsest`
+  // Each coarse level has 1 / ratio of the vertices of the next finer one,
+  // and holds the largest earlier domain that fits and an even share of the
+  // later vertices of the finer level. No level has fewer than `coarsest`
   // vertices but the last.
   ProgressiveHierarchy(double ratio, std::size_t coarsest);
 
   // The prolongations for a system on `vertices` (finest first: the first
   // maps level 1 to the system's level 0), then remembers this domain's size
-  // for the next calls. The prolongations between coarse levels are kept
-  // from the last call where they are the same.
+  // for the next call.
   const std::vector<SparseMatrix>& levels_for(const std::vector<Vec3>& vertices);
 
-  // Remembers a domain of n vertices as a level for the next calls, when it
-  // is solved without the hierarchy (directly).
+  // Remembers a domain of n vertices for the next call, when it is solved
+  // without the hierarchy (directly).
   void remember(std::size_t n);
 
-  // The size of every level of the last levels_for, finest first.
-  std::vector<std::size_t> sizes() const;
-
  private:
-  std::vector<int> level(std::size_t n, double target) const;
-
   double ratio_;
   std::size_t coarsest_;
-  std::vector<std::size_t> history_;         // sizes of the earlier domains, increasing
-  std::vector<std::vector<int>> chain_;      // the last levels_for's vertex sets, finest first
+  std::vector<std::size_t> history_;         // the earlier domains' sizes, increasing
   std::vector<SparseMatrix> prolongations_;  // the last levels_for's, finest first
 };
 
