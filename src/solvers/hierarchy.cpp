@@ -11,9 +11,9 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <utility>
 #include <numeric>
 #include <stdexcept>
+#include <utility>
 
 namespace pdd::detail {
 namespace {
