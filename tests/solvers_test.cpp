@@ -391,6 +391,21 @@ TEST(PoissonSolver, WithoutScreeningItIsTheOriginalPoissonEquation) {
 // Domains refined from each other as the progressive loop refines them (f the
 // signed distance, refined by §3.4's rules to a uniform target, then
 // optimized), each then solved with the same solver: the earlier domains are its coarse levels.
+// Refined to `sizing` with f the exact signed distance, then one optimizer
+// round, as the loop runs before each solve: bisection leaves flat slivers
+// (volume 1e-19) whose stiffness is not definite.
+void refine_and_optimize(Domain& domain, const Distance& distance, const SizingField& sizing,
+                         std::mt19937_64& rng) {
+  for (int pass = 0; pass < 6; ++pass) {
+    std::vector<double> f(domain.num_vertices());
+    for (std::size_t v = 0; v < f.size(); ++v) f[v] = distance(domain.vertices()[v]);
+    domain.set_f(f);
+    const RefinementStats r = refine(domain, sizing, rng);
+    if (r.trisected + r.bisected < 0.02 * r.crossing_tets) break;
+  }
+  optimize_domain(domain, OptimizerOptions());
+}
+
 class ProgressiveLevels : public ::testing::TestWithParam<SolverKind> {};
 
 TEST_P(ProgressiveLevels, MultigridIterationsStayBoundedAndMatchCholmod) {
@@ -425,18 +440,7 @@ TEST_P(ProgressiveLevels, MultigridIterationsStayBoundedAndMatchCholmod) {
     std::mt19937_64 rng(3);
     std::vector<int> iterations, point_iterations, loose_iterations;
     for (double edge : {0.2, 0.1, 0.05, 0.025}) {
-      // Refined to this target edge with f the exact signed distance.
-      const auto sizing = uniform_sizing(area_for_edge_length(edge));
-      for (int pass = 0; pass < 6; ++pass) {
-        std::vector<double> f(domain.num_vertices());
-        for (std::size_t v = 0; v < f.size(); ++v) f[v] = shape.distance(domain.vertices()[v]);
-        domain.set_f(f);
-        const RefinementStats r = refine(domain, *sizing, rng);
-        if (r.trisected + r.bisected < 0.02 * r.crossing_tets) break;
-      }
-      // One optimizer round, as the loop runs before each solve: bisection
-      // leaves flat slivers (volume 1e-19) whose stiffness is not definite.
-      optimize_domain(domain, OptimizerOptions());
+      refine_and_optimize(domain, shape.distance, *uniform_sizing(area_for_edge_length(edge)), rng);
       const std::vector<double> g = mg->solve(domain, shape.samples);
       const std::vector<double> g_tight = mg_tight->solve(domain, shape.samples);
       if (ssd) {
@@ -507,14 +511,7 @@ TEST(ProgressiveLevelsLocal, IterationsStayBoundedAfterALocalRefinement) {
   std::mt19937_64 rng(5);
   const Distance distance = sphere_distance();
   auto refine_to = [&](const SizingField& sizing) {
-    for (int pass = 0; pass < 6; ++pass) {
-      std::vector<double> f(domain.num_vertices());
-      for (std::size_t v = 0; v < f.size(); ++v) f[v] = distance(domain.vertices()[v]);
-      domain.set_f(f);
-      const RefinementStats r = refine(domain, sizing, rng);
-      if (r.trisected + r.bisected < 0.02 * r.crossing_tets) break;
-    }
-    optimize_domain(domain, OptimizerOptions());
+    refine_and_optimize(domain, distance, sizing, rng);
     solver->solve(domain, samples);
     return solver->stats();
   };
