@@ -261,6 +261,17 @@ TEST_F(FemTest, GalerkinProductMatchesEigensProduct) {
     ASSERT_EQ(from_double.valuePtr()[k], static_cast<float>(mine.valuePtr()[k]));
     ASSERT_LT(std::abs(double(from_single.valuePtr()[k]) - mine.valuePtr()[k]), 1e-6 * largest);
   }
+  // From A's lower triangle in double into single precision (the multigrid's
+  // first coarse level; the entries above the diagonal read rounded): within
+  // float's rounding of the double product, the same pattern.
+  const Eigen::SparseMatrix<float> single_lower =
+      galerkin_product<float>(P, lower, Stored::kLower, Stored::kLower);
+  ASSERT_EQ(single_lower.nonZeros(), mine_lower.nonZeros());
+  for (Eigen::Index k = 0; k < mine_lower.nonZeros(); ++k) {
+    ASSERT_EQ(single_lower.innerIndexPtr()[k], mine_lower.innerIndexPtr()[k]);
+    ASSERT_LT(std::abs(double(single_lower.valuePtr()[k]) - mine_lower.valuePtr()[k]),
+              1e-6 * largest);
+  }
 }
 
 // H^T M^-1 H, the squared Hessian energy by its definition.

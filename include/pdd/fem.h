@@ -113,7 +113,8 @@ SparseMatrix gram_matrix(const SparseMatrix& A, const Eigen::VectorXd& d,
 // deterministic: the coarse operators of the multigrid solver, all entries
 // or the lower triangle (`result`, by default as A is stored). A and the
 // result in double or single precision (Out = float: the multigrid's coarse
-// levels); the sums in double.
+// levels); the sums in double, but from a lower triangle into single
+// precision, where A's entries above the diagonal are read rounded to it.
 template <class Out = double, class Scalar = double>
 Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::SparseMatrix<Scalar>& A,
                                           Stored stored, Stored result);
