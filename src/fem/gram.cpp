@@ -283,8 +283,8 @@ Eigen::SparseMatrix<Out> galerkin_product(const SparseMatrix& P, const Eigen::Sp
   const Scalar* a_value = A.valuePtr();
   // A lower triangle gives column k of A below the diagonal; the entries
   // above it are row k of the triangle, copied here by rows with their values
-  // in Out's precision (8 bytes per entry for a single-precision result:
-  // read in place, each was a cache miss in the product below).
+  // in Out's precision (8 bytes per entry for a single-precision result), so
+  // that the product below reads them in order rather than one cache miss each.
   struct RowEntry {
     int column;
     Out value;
