@@ -225,53 +225,42 @@ TEST_F(FemTest, GalerkinProductMatchesEigensProduct) {
     for (int p = mine.outerIndexPtr()[j] + 1; p < mine.outerIndexPtr()[j + 1]; ++p)
       ASSERT_LT(mine.innerIndexPtr()[p - 1], mine.innerIndexPtr()[p]);
 
+  // `got` has want's pattern and its values within `tolerance`.
+  auto expect_close = [](const auto& got, const SparseMatrix& want, double tolerance) {
+    ASSERT_EQ(got.nonZeros(), want.nonZeros());
+    for (Eigen::Index k = 0; k < want.nonZeros(); ++k) {
+      ASSERT_EQ(got.innerIndexPtr()[k], want.innerIndexPtr()[k]);
+      ASSERT_LE(std::abs(double(got.valuePtr()[k]) - want.valuePtr()[k]), tolerance);
+    }
+  };
+
   // From A's lower triangle alone: the same pattern, the same values but
   // for the order of the sums, whole or as a lower triangle too.
   const SparseMatrix lower = A.triangularView<Eigen::Lower>();
-  const SparseMatrix from_lower = galerkin_product(P, lower, Stored::kLower, Stored::kAll);
-  ASSERT_EQ(from_lower.nonZeros(), mine.nonZeros());
-  for (Eigen::Index k = 0; k < mine.nonZeros(); ++k) {
-    ASSERT_EQ(from_lower.innerIndexPtr()[k], mine.innerIndexPtr()[k]);
-    ASSERT_NEAR(from_lower.valuePtr()[k], mine.valuePtr()[k], 1e-13 * eigen.norm());
-  }
+  expect_close(galerkin_product(P, lower, Stored::kLower, Stored::kAll), mine,
+               1e-13 * eigen.norm());
   const SparseMatrix mine_lower = mine.triangularView<Eigen::Lower>();
   ASSERT_LT(mine_lower.nonZeros(), mine.nonZeros());
-  for (const Stored stored : {Stored::kAll, Stored::kLower}) {
-    const SparseMatrix to_lower =
-        galerkin_product(P, stored == Stored::kAll ? A : lower, stored, Stored::kLower);
-    ASSERT_EQ(to_lower.nonZeros(), mine_lower.nonZeros());
-    for (Eigen::Index k = 0; k < mine_lower.nonZeros(); ++k) {
-      ASSERT_EQ(to_lower.innerIndexPtr()[k], mine_lower.innerIndexPtr()[k]);
-      ASSERT_NEAR(to_lower.valuePtr()[k], mine_lower.valuePtr()[k], 1e-13 * eigen.norm());
-    }
-  }
+  for (const Stored stored : {Stored::kAll, Stored::kLower})
+    expect_close(galerkin_product(P, stored == Stored::kAll ? A : lower, stored, Stored::kLower),
+                 mine_lower, 1e-13 * eigen.norm());
 
   // In single precision (the multigrid's coarse levels): from A in double,
-  // each entry is the double product's rounded once; from A in single, within
-  // float's rounding of it. The same pattern.
+  // each entry is the double product's rounded once; from A in single, and
+  // from A's lower triangle in double (the multigrid's first coarse level,
+  // the entries above the diagonal read rounded), within float's rounding of
+  // it. The same pattern.
   const Eigen::SparseMatrix<float> from_double = galerkin_product<float>(P, A);
-  const Eigen::SparseMatrix<float> A_single = A.cast<float>();
-  const Eigen::SparseMatrix<float> from_single = galerkin_product<float>(P, A_single);
   ASSERT_EQ(from_double.nonZeros(), mine.nonZeros());
-  ASSERT_EQ(from_single.nonZeros(), mine.nonZeros());
-  const double largest = mine.coeffs().cwiseAbs().maxCoeff();
   for (Eigen::Index k = 0; k < mine.nonZeros(); ++k) {
     ASSERT_EQ(from_double.innerIndexPtr()[k], mine.innerIndexPtr()[k]);
-    ASSERT_EQ(from_single.innerIndexPtr()[k], mine.innerIndexPtr()[k]);
     ASSERT_EQ(from_double.valuePtr()[k], static_cast<float>(mine.valuePtr()[k]));
-    ASSERT_LT(std::abs(double(from_single.valuePtr()[k]) - mine.valuePtr()[k]), 1e-6 * largest);
   }
-  // From A's lower triangle in double into single precision (the multigrid's
-  // first coarse level; the entries above the diagonal read rounded): within
-  // float's rounding of the double product, the same pattern.
-  const Eigen::SparseMatrix<float> single_lower =
-      galerkin_product<float>(P, lower, Stored::kLower, Stored::kLower);
-  ASSERT_EQ(single_lower.nonZeros(), mine_lower.nonZeros());
-  for (Eigen::Index k = 0; k < mine_lower.nonZeros(); ++k) {
-    ASSERT_EQ(single_lower.innerIndexPtr()[k], mine_lower.innerIndexPtr()[k]);
-    ASSERT_LT(std::abs(double(single_lower.valuePtr()[k]) - mine_lower.valuePtr()[k]),
-              1e-6 * largest);
-  }
+  const double largest = mine.coeffs().cwiseAbs().maxCoeff();
+  const Eigen::SparseMatrix<float> A_single = A.cast<float>();
+  expect_close(galerkin_product<float>(P, A_single), mine, 1e-6 * largest);
+  expect_close(galerkin_product<float>(P, lower, Stored::kLower, Stored::kLower), mine_lower,
+               1e-6 * largest);
 }
 
 // H^T M^-1 H, the squared Hessian energy by its definition.

@@ -388,9 +388,6 @@ TEST(PoissonSolver, WithoutScreeningItIsTheOriginalPoissonEquation) {
   EXPECT_GT(solver->stats().kernel_size, 0.0);
 }
 
-// Domains refined from each other as the progressive loop refines them (f the
-// signed distance, refined by §3.4's rules to a uniform target, then
-// optimized), each then solved with the same solver: the earlier domains are its coarse levels.
 // Refined to `sizing` with f the exact signed distance, then one optimizer
 // round, as the loop runs before each solve: bisection leaves flat slivers
 // (volume 1e-19) whose stiffness is not definite.
@@ -406,6 +403,9 @@ void refine_and_optimize(Domain& domain, const Distance& distance, const SizingF
   optimize_domain(domain, OptimizerOptions());
 }
 
+// Domains refined from each other as the progressive loop refines them (f the
+// signed distance, refined by §3.4's rules to a uniform target, then
+// optimized), each then solved with the same solver: the earlier domains are its coarse levels.
 class ProgressiveLevels : public ::testing::TestWithParam<SolverKind> {};
 
 TEST_P(ProgressiveLevels, MultigridIterationsStayBoundedAndMatchCholmod) {
