@@ -6,12 +6,8 @@
 #include <pdd/fem.h>
 
 #include "common/cancellation.h"
+#include "common/hilbert_order.h"
 #include "fem/assembly.h"
-
-#include <CGAL/Simple_cartesian.h>
-#include <CGAL/Spatial_sort_traits_adapter_3.h>
-#include <CGAL/hilbert_sort.h>
-#include <CGAL/property_map.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -25,8 +21,6 @@
 
 namespace pdd {
 namespace {
-
-using HilbertKernel = CGAL::Simple_cartesian<double>;
 
 // Per-thread dense scratch: a marker per row of the result and an accumulator.
 struct Scratch {
@@ -417,16 +411,7 @@ SparseMatrix hessian_energy(const TetMesh& mesh, Stored stored) {
   // H is assembled about once.
   std::vector<int> order(n);
   {
-    std::vector<HilbertKernel::Point_3> points;
-    points.reserve(n);
-    for (const Vec3& x : mesh.vertices) points.emplace_back(x.x(), x.y(), x.z());
-    std::vector<std::size_t> sorted(n);
-    std::iota(sorted.begin(), sorted.end(), std::size_t{0});
-    using Map = CGAL::Pointer_property_map<HilbertKernel::Point_3>::type;
-    CGAL::hilbert_sort(sorted.begin(), sorted.end(),
-                       CGAL::Spatial_sort_traits_adapter_3<HilbertKernel, Map>(
-                           CGAL::make_property_map(points)),
-                       CGAL::Hilbert_sort_median_policy());
+    const std::vector<std::size_t> sorted = hilbert_order(mesh.vertices);
     std::copy(sorted.begin(), sorted.end(), order.begin());
   }
   return accumulate_columns(

@@ -8,19 +8,16 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Simple_cartesian.h>
-#include <CGAL/Spatial_sort_traits_adapter_3.h>
-#include <CGAL/hilbert_sort.h>
-#include <CGAL/property_map.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <random>
 #include <stdexcept>
 #include <string>
 
+#include "common/hilbert_order.h"
 #include "metrics/elements.h"
 
 namespace pdd {
@@ -68,13 +65,7 @@ OneSidedDistance one_sided(const std::vector<Vec3>& samples, const TriangleMesh&
   std::vector<Point> points;
   points.reserve(samples.size());
   for (const Vec3& s : samples) points.push_back(point(s));
-  std::vector<std::size_t> order(samples.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  using Map = CGAL::Pointer_property_map<Point>::type;
-  CGAL::hilbert_sort(order.begin(), order.end(),
-                     CGAL::Spatial_sort_traits_adapter_3<Kernel, Map>(
-                         CGAL::make_property_map(points)),
-                     CGAL::Hilbert_sort_median_policy());
+  const std::vector<std::size_t> order = detail::hilbert_order(samples);
 
   std::vector<double> squared(samples.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 1024),

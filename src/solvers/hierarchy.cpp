@@ -153,7 +153,9 @@ ProgressiveHierarchy::ProgressiveHierarchy(double ratio, std::size_t coarsest)
 }
 
 const std::vector<SparseMatrix>& ProgressiveHierarchy::levels_for(
-    const std::vector<Vec3>& vertices) {
+    const std::vector<Vec3>& vertices, const std::vector<int>& original) {
+  if (!original.empty() && original.size() != vertices.size())
+    throw std::invalid_argument("ProgressiveHierarchy: one domain index per unknown is required");
   const std::size_t n = vertices.size();
   // Earlier sizes that are not prefixes of this domain are forgotten.
   history_.erase(std::lower_bound(history_.begin(), history_.end(), n), history_.end());
@@ -198,6 +200,20 @@ const std::vector<SparseMatrix>& ProgressiveHierarchy::levels_for(
     level.insert(level.end(), drawn.begin(), drawn.end());
   }
 
+  // Each level's unknowns in the system's order.
+  if (!original.empty()) {
+    std::vector<int> unknown(n, -1);
+    for (std::size_t u = 0; u < n; ++u) {
+      const int v = original[u];
+      if (v < 0 || static_cast<std::size_t>(v) >= n || unknown[v] >= 0)
+        throw std::invalid_argument("ProgressiveHierarchy: the unknowns' order is no permutation");
+      unknown[v] = static_cast<int>(u);
+    }
+    for (std::vector<int>& level : chain) {
+      for (int& v : level) v = unknown[v];
+      std::sort(level.begin(), level.end());
+    }
+  }
   std::vector<SparseMatrix> prolongations(chain.size() - 1);
   for (std::size_t k = 0; k + 1 < chain.size(); ++k) {
     subset_prolongation(vertices, chain[k + 1], chain[k]).swap(prolongations[k]);

@@ -38,8 +38,10 @@ class ProgressiveHierarchy {
 
   // The prolongations for a system on `vertices` (finest first: the first
   // maps level 1 to the system's level 0), then remembers this domain's size
-  // for the next call.
-  const std::vector<SparseMatrix>& levels_for(const std::vector<Vec3>& vertices);
+  // for the next call. Unknown u is domain vertex original[u] (empty: u), at
+  // vertices[u]; each coarse level's unknowns keep the system's order.
+  const std::vector<SparseMatrix>& levels_for(const std::vector<Vec3>& vertices,
+                                              const std::vector<int>& original = {});
 
   // Remembers a domain of n vertices for the next call, when it is solved
   // without the hierarchy (directly).

@@ -84,15 +84,18 @@ LinearSolver::~LinearSolver() = default;
 LinearSolver::LinearSolver(LinearSolver&&) noexcept = default;
 LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
 
+bool LinearSolver::iterative(std::size_t n) const {
+  return impl_->options.method != LinearMethod::kCholmod && n >= impl_->options.direct_below;
+}
+
 void LinearSolver::compute(const SparseMatrix& A, const std::vector<Vec3>& vertices,
-                           Stored stored) {
+                           Stored stored, const std::vector<int>& original) {
   const auto start = Clock::now();
   Impl& d = *impl_;
   if (static_cast<std::size_t>(A.rows()) != vertices.size())
     throw std::invalid_argument("LinearSolver: one unknown per vertex is required");
   d.A = SymmetricProduct<double>(A, stored == Stored::kLower);
-  d.direct = d.options.method == LinearMethod::kCholmod ||
-             vertices.size() < d.options.direct_below;
+  d.direct = !iterative(vertices.size());
   if (d.direct) {
     d.cholmod.compute(A);
     if (d.cholmod.info() != Eigen::Success)
@@ -105,7 +108,7 @@ void LinearSolver::compute(const SparseMatrix& A, const std::vector<Vec3>& verti
     mg.finest_smoothing_degree = d.options.finest_smoothing_degree;
     mg.coarsest_size = d.options.coarsest_size;
     mg.block_coupling = d.options.block_coupling;
-    d.multigrid.setup(d.A, d.hierarchy.levels_for(vertices), mg);
+    d.multigrid.setup(d.A, d.hierarchy.levels_for(vertices, original), mg);
     levels_ = static_cast<int>(d.multigrid.num_levels());
   }
   // The hierarchy remembers every domain, solved directly or not.

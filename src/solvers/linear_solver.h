@@ -29,8 +29,13 @@ class LinearSolver {
   // it. Successive calls on domains each refined from the last use the
   // earlier ones as coarse levels. Throws SolverError when A is not positive
   // definite numerically.
+  // Unknown u is the domain's vertex original[u] (empty: u), at vertices[u]:
+  // the hierarchy's levels are sets of the domain's vertices.
   void compute(const SparseMatrix& A, const std::vector<Vec3>& vertices,
-               Stored stored = Stored::kAll);
+               Stored stored = Stored::kAll, const std::vector<int>& original = {});
+
+  // Whether compute() on a system of n unknowns takes the multigrid, not CHOLMOD.
+  bool iterative(std::size_t n) const;
 
   // Solves A x = b. On entry x is a warm start for CG (empty or zero means
   // none); CHOLMOD ignores it. Throws SolverError, naming the relative

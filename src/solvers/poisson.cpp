@@ -29,7 +29,8 @@ class PoissonSolver final : public ImplicitSolver {
     stats_ = SolverStats();
     const Problem p = make_problem(domain, points, "Poisson solver",
                                    "the Poisson solver needs oriented normals (Eq. 13)",
-                                   {take_release_triangulation(), SamplingMatrix::kBuild, &order_});
+                                   {take_release_triangulation(), SamplingMatrix::kBuild, &order_,
+                                    linear_.iterative(domain.num_vertices())});
     const NearestNeighbors tree(points.points);  // the samples' one tree for the three below
     const double sigma = options_.kernel_size > 0
                              ? options_.kernel_size
@@ -69,9 +70,9 @@ class PoissonSolver final : public ImplicitSolver {
     }
     stats_.assembly_seconds = seconds_since(start);
 
-    linear_.compute(A, p.mesh.vertices);
+    linear_.compute(A, p.mesh.vertices, Stored::kAll, p.original);
     const auto solve_start = Clock::now();
-    Eigen::VectorXd f = warm_start_vector(warm_start, p.mesh.vertices.size());
+    Eigen::VectorXd f = p.warm_start(warm_start);
     linear_.solve(b, f);
     if (options_.median_shift) {
       stats_.median_shift = median_at_samples(p.Phi, f);
@@ -85,7 +86,7 @@ class PoissonSolver final : public ImplicitSolver {
     stats_.num_points = p.num_points;
     stats_.nonzeros = static_cast<std::size_t>(A.nonZeros());
     stats_.kernel_size = sigma;
-    return to_std(f);
+    return p.domain_values(f);
   }
 
   const SolverStats& stats() const override { return stats_; }

@@ -1,16 +1,41 @@
 #include "solvers/problem.h"
 
 #include "common/cancellation.h"
+#include "common/hilbert_order.h"
 #include <pdd/errors.h>
 #include <pdd/io.h>
 
 #include <Eigen/Geometry>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
 
 namespace pdd::detail {
+namespace {
+
+// The mesh with its vertices renumbered along a Hilbert curve, and
+// original[u], the index in `mesh` of vertex u.
+std::unique_ptr<TetMesh> hilbert_ordered(const TetMesh& mesh, std::vector<int>& original) {
+  const std::size_t n = mesh.vertices.size();
+  const std::vector<std::size_t> order = hilbert_order(mesh.vertices);
+  original.assign(order.begin(), order.end());
+  auto ordered = std::make_unique<TetMesh>();
+  ordered->vertices.resize(n);
+  std::vector<int> renumbered(n);
+  tbb::parallel_for(std::size_t(0), n, [&](std::size_t u) {
+    ordered->vertices[u] = mesh.vertices[original[u]];
+    renumbered[original[u]] = static_cast<int>(u);
+  });
+  ordered->tets.resize(mesh.tets.size());
+  tbb::parallel_for(std::size_t(0), mesh.tets.size(), [&](std::size_t t) {
+    for (int i = 0; i < 4; ++i) ordered->tets[t][i] = renumbered[mesh.tets[t][i]];
+  });
+  return ordered;
+}
+
+}  // namespace
 
 const std::vector<std::size_t>& SampleOrder::of(const std::vector<Vec3>& points) {
   // FNV-1a over the coordinates' bits, with the count.
@@ -35,14 +60,22 @@ Problem make_problem(const Domain& domain, const PointSet& points, const std::st
   if (points.normals.size() != points.points.size())
     throw InputError(solver + ": " + std::to_string(points.normals.size()) + " normals for " +
                      std::to_string(points.points.size()) + " points");
-  Problem p{domain.mesh(), {}, {}, {}};
+  std::vector<Location> locations;
   try {
-    p.locations = locate_points(domain, points.points,
-                                options.order ? &options.order->of(points.points) : nullptr);
+    locations = locate_points(domain, points.points,
+                              options.order ? &options.order->of(points.points) : nullptr);
   } catch (const InputError& e) {
     throw InputError(solver + ": " + e.what());
   }
   if (options.release_triangulation) domain.release_triangulation();
+  poll();
+  // The locations name tets, whose order the renumbering keeps.
+  std::vector<int> original;
+  std::unique_ptr<TetMesh> ordered;
+  if (options.spatial_order) ordered = hilbert_ordered(domain.mesh(), original);
+  // (A braced list is evaluated in order: the mesh is bound before `ordered` moves.)
+  Problem p{ordered ? *ordered : domain.mesh(), std::move(locations), {}, {}, 1, 0,
+            std::move(ordered), std::move(original)};
   poll();
   if (options.phi == SamplingMatrix::kBuild) {
     sampling_matrix(p.mesh, p.locations).swap(p.Phi);  // Eigen 3.4's SparseMatrix: = would copy
@@ -77,16 +110,23 @@ std::vector<int> outer_vertices(const Domain& domain) {
   return out;
 }
 
-Eigen::VectorXd warm_start_vector(const std::vector<double>* warm_start, std::size_t n) {
-  if (warm_start == nullptr) return {};
-  if (warm_start->size() != n)
-    throw std::invalid_argument("solver: the warm start has " + std::to_string(warm_start->size()) +
+Eigen::VectorXd Problem::warm_start(const std::vector<double>* values) const {
+  if (values == nullptr) return {};
+  const std::size_t n = mesh.vertices.size();
+  if (values->size() != n)
+    throw std::invalid_argument("solver: the warm start has " + std::to_string(values->size()) +
                                 " values for " + std::to_string(n) + " vertices");
-  return Eigen::Map<const Eigen::VectorXd>(warm_start->data(), static_cast<Eigen::Index>(n));
+  Eigen::VectorXd f(static_cast<Eigen::Index>(n));
+  for (std::size_t u = 0; u < n; ++u)
+    f[static_cast<Eigen::Index>(u)] = (*values)[original.empty() ? u : original[u]];
+  return f;
 }
 
-std::vector<double> to_std(const Eigen::VectorXd& f) {
-  return std::vector<double>(f.data(), f.data() + f.size());
+std::vector<double> Problem::domain_values(const Eigen::VectorXd& f) const {
+  std::vector<double> values(static_cast<std::size_t>(f.size()));
+  for (std::size_t u = 0; u < values.size(); ++u)
+    values[original.empty() ? u : original[u]] = f[static_cast<Eigen::Index>(u)];
+  return values;
 }
 
 }  // namespace pdd::detail

@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,12 +22,23 @@ inline double seconds_since(Clock::time_point start) {
 
 // The samples inside the domain.
 struct Problem {
-  const TetMesh& mesh;             // domain.mesh()
+  const TetMesh& mesh;             // domain.mesh(), or *ordered
   std::vector<Location> locations; // tet and barycentric coordinates of each sample
   SparseMatrix Phi;                // sampling matrix, |X| x |V| (empty when skipped)
   std::vector<Vec3> normals;       // the samples' normals scaled to unit length
   double length = 1;               // l: largest side of the samples' bounding box
   std::size_t num_points = 0;
+  // With ProblemOptions::spatial_order: the domain's mesh with its vertices
+  // renumbered along a Hilbert curve, the tets in the same order; mesh vertex
+  // u is domain vertex original[u]. Empty: the domain's own numbering.
+  std::unique_ptr<TetMesh> ordered;
+  std::vector<int> original;
+
+  // The warm start in mesh's numbering (empty if absent); std::invalid_argument
+  // when it does not have one value per vertex.
+  Eigen::VectorXd warm_start(const std::vector<double>* values) const;
+  // f (in mesh's numbering) in the domain's.
+  std::vector<double> domain_values(const Eigen::VectorXd& f) const;
 
   // Frees the locations, Phi and the normals, for a solver that needs them
   // only to assemble its system (about 110 bytes per sample while it solves).
@@ -34,6 +46,11 @@ struct Problem {
     std::vector<Location>().swap(locations);
     SparseMatrix().swap(Phi);
     std::vector<Vec3>().swap(normals);
+  }
+  // Frees the renumbered mesh's tets (the domain's stay), for a solver that
+  // needs only its vertices once the system is assembled.
+  void release_ordered_tets() {
+    if (ordered) std::vector<std::array<int, 4>>().swap(ordered->tets);
   }
 };
 
@@ -57,6 +74,11 @@ struct ProblemOptions {
   bool release_triangulation = false;  // free the domain's triangulation once located
   SamplingMatrix phi = SamplingMatrix::kBuild;
   SampleOrder* order = nullptr;  // the solver's, kept across its solves
+  // Renumber the mesh's vertices along a Hilbert curve (Problem::ordered): the
+  // domain's numbering (each refinement appends its vertices) scatters the
+  // neighbours of a vertex across the arrays, and the multigrid solve's
+  // products then miss the cache.
+  bool spatial_order = false;
 };
 
 // Validates the inputs (at least one sample; normals, when required, one per
@@ -83,12 +105,5 @@ void for_each_hull_face(const Domain& domain, Visit visit) {
 // Vertices where f must be positive (outside): those flagged on the domain's
 // bounding sphere, or, when none is flagged, those on the convex hull.
 std::vector<int> outer_vertices(const Domain& domain);
-
-// The warm start as an Eigen vector (empty if absent); std::invalid_argument
-// when it does not have one value per vertex.
-Eigen::VectorXd warm_start_vector(const std::vector<double>* warm_start, std::size_t n);
-
-// Copies to std::vector.
-std::vector<double> to_std(const Eigen::VectorXd& f);
 
 }  // namespace pdd::detail

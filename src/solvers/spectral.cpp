@@ -143,7 +143,7 @@ class SpectralSolver final : public ImplicitSolver {
 
     linear_.compute(B, p.mesh.vertices, Stored::kLower);
     const auto solve_start = Clock::now();
-    Eigen::VectorXd f = warm_start_vector(warm_start, p.mesh.vertices.size());
+    Eigen::VectorXd f = p.warm_start(warm_start);
     const SymmetricProduct<double> a(A, true), b(B, true);
     const LobpcgResult eig = largest_eigenpair(
         a, b, [&](const Eigen::VectorXd& r, Eigen::VectorXd& z) { linear_.precondition(r, z); }, f,
@@ -185,7 +185,7 @@ class SpectralSolver final : public ImplicitSolver {
     stats_.num_points = p.num_points;
     stats_.nonzeros = static_cast<std::size_t>(b.nonzeros());
     stats_.value_weight = alpha;
-    return to_std(f);
+    return p.domain_values(f);
   }
 
   const SolverStats& stats() const override { return stats_; }

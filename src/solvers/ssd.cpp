@@ -72,17 +72,19 @@ class SsdSolver final : public ImplicitSolver {
     const auto start = Clock::now();
     stats_ = SolverStats();
     Problem p = make_problem(domain, points, "SSD solver", kWhyNormals,
-                             {take_release_triangulation(), SamplingMatrix::kSkip, &order_});
+                             {take_release_triangulation(), SamplingMatrix::kSkip, &order_,
+                              linear_.iterative(domain.num_vertices())});
     const SsdOptions options = resolved(options_, p, points);
     const LinearSystem system = ssd_system(p, options, Stored::kLower);
     p.release_samples();
+    p.release_ordered_tets();
     const SparseMatrix& A = system.A;
     const Eigen::VectorXd& b = system.b;
     stats_.assembly_seconds = seconds_since(start);
 
-    linear_.compute(A, p.mesh.vertices, Stored::kLower);
+    linear_.compute(A, p.mesh.vertices, Stored::kLower, p.original);
     const auto solve_start = Clock::now();
-    Eigen::VectorXd f = warm_start_vector(warm_start, p.mesh.vertices.size());
+    Eigen::VectorXd f = p.warm_start(warm_start);
     linear_.solve(b, f);
     stats_.solve_seconds = seconds_since(solve_start);
 
@@ -92,7 +94,7 @@ class SsdSolver final : public ImplicitSolver {
     stats_.num_points = p.num_points;
     stats_.nonzeros = static_cast<std::size_t>(2 * A.nonZeros() - A.rows());  // both triangles
     stats_.value_weight = options.alpha;
-    return to_std(f);
+    return p.domain_values(f);
   }
 
   const SolverStats& stats() const override { return stats_; }
