@@ -11,7 +11,8 @@
 # an unseen base, density and noise from the rays) of CGAL's meshes at each
 # --points count, cached under build/scale_inputs/. For each input, in this
 # order: pdd reconstruct under /usr/bin/time -v (wall time, peak memory,
-# per-stage seconds, final domain, triangles), then PoissonRecon at each
+# per-stage seconds, final domain, triangles; each multigrid solve's unknowns,
+# CG iterations and setup + CG seconds), then PoissonRecon at each
 # --depth; the row names the depth whose output size is nearest pdd's and the
 # time ratio at that depth. Needs scripts/setup.sh --bench (installed here),
 # the peers in ../shared/anchors/bin and a build in build/.
@@ -80,8 +81,8 @@ with open(sys.argv[1], 'rb') as f:
 {
   echo "# bench/scale.sh ${pdd_args:+(pdd $pdd_args) }$(date -u '+%Y-%m-%d %H:%M UTC'), commit $(git rev-parse --short HEAD), $(nproc) cores"
   echo
-  echo "| input | points | pdd s | peak MB | domain vertices | triangles | s / 100k triangles | solve / optimize / refine / contour / clean-up (with the trim) s | budget | PoissonRecon depth | PR triangles | PR s | PR MB | pdd / PR time |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  echo "| input | points | pdd s | peak MB | domain vertices | triangles | s / 100k triangles | solve / optimize / refine / contour / clean-up (with the trim) s | budget | PoissonRecon depth | PR triangles | PR s | PR MB | pdd / PR time | multigrid solves: unknowns, CG iterations, setup + CG s |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 } > "$work/table.md"
 cat "$work/table.md"
 
@@ -103,6 +104,7 @@ with open(sys.argv[1], 'rb') as f:
   stages="$(jq -r '[.iterations[].seconds] | [map(.solve) , map(.optimize), map(.refine), map(.contour), map(.cleanup)] | map(add | . * 10 | round / 10) | map(tostring) | join(" / ")' "$work/$name.json")"
   vertices="$(jq -r .vertices "$work/$name.json")"
   triangles="$(jq -r .triangles "$work/$name.json")"
+  solves="$(jq -r '[.iterations[] | select(.solver_method == "cg+multigrid") | "\(.vertices / 1000 | round)k \(.solver_iterations) \((.seconds.solve_factorize + .seconds.solve_linear) * 10 | round / 10)"] | join("; ")' "$work/$name.json")"
   budget="$(jq -r '.memory_budget | if .coarsening > 1 then "coarsened \(.coarsening * 100 | round / 100)x" elif .refinement_stopped then "stopped" else "-" end' "$work/$name.json")"
   best="" best_gap=""
   IFS=, read -ra depth_list <<< "$depths"
@@ -117,7 +119,7 @@ with open(sys.argv[1], 'rb') as f:
     echo "  $name: PoissonRecon depth $d: $f triangles, $(seconds "$work/pr$d.time") s" >&2
   done
   t_pr="$(seconds "$work/pr$best.time")"
-  row="| $name | $n_points | $t_pdd | $m_pdd | $vertices | $triangles | $(awk -v t="$t_pdd" -v n="$triangles" 'BEGIN { printf "%.1f", t / n * 1e5 }') | $stages | $budget | $best | $(faces "$work/pr$best.ply") | $t_pr | $(peak_mb "$work/pr$best.time") | $(awk -v a="$t_pdd" -v b="$t_pr" 'BEGIN { printf "%.1f", a / b }') |"
+  row="| $name | $n_points | $t_pdd | $m_pdd | $vertices | $triangles | $(awk -v t="$t_pdd" -v n="$triangles" 'BEGIN { printf "%.1f", t / n * 1e5 }') | $stages | $budget | $best | $(faces "$work/pr$best.ply") | $t_pr | $(peak_mb "$work/pr$best.time") | $(awk -v a="$t_pdd" -v b="$t_pr" 'BEGIN { printf "%.1f", a / b }') | $solves |"
   echo "$row" | tee -a "$work/table.md"
 done
 mkdir -p "$(dirname "$out")"
