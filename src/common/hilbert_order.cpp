@@ -9,7 +9,7 @@
 
 namespace pdd::detail {
 
-std::vector<std::size_t> hilbert_order(const std::vector<Vec3>& points) {
+std::vector<int> hilbert_order(const std::vector<Vec3>& points) {
   using Kernel = CGAL::Simple_cartesian<double>;
   std::vector<Kernel::Point_3> copy;
   copy.reserve(points.size());
@@ -21,7 +21,7 @@ std::vector<std::size_t> hilbert_order(const std::vector<Vec3>& points) {
       order.begin(), order.end(),
       CGAL::Spatial_sort_traits_adapter_3<Kernel, Map>(CGAL::make_property_map(copy)),
       CGAL::Hilbert_sort_median_policy());
-  return order;
+  return std::vector<int>(order.begin(), order.end());
 }
 
 }  // namespace pdd::detail

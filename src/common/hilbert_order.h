@@ -4,13 +4,12 @@
 
 #include <pdd/types.h>
 
-#include <cstddef>
 #include <vector>
 
 namespace pdd::detail {
 
 // The indices of `points` along a Hilbert curve (CGAL's median policy),
 // sorted on all cores: the same order whatever the threads.
-std::vector<std::size_t> hilbert_order(const std::vector<Vec3>& points);
+std::vector<int> hilbert_order(const std::vector<Vec3>& points);
 
 }  // namespace pdd::detail

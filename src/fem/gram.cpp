@@ -409,11 +409,7 @@ SparseMatrix hessian_energy(const TetMesh& mesh, Stored stored) {
   };
   // Columns in Hilbert order: a slice's rings then overlap, and each column of
   // H is assembled about once.
-  std::vector<int> order(n);
-  {
-    const std::vector<std::size_t> sorted = hilbert_order(mesh.vertices);
-    std::copy(sorted.begin(), sorted.end(), order.begin());
-  }
+  const std::vector<int> order = hilbert_order(mesh.vertices);
   return accumulate_columns(
       n, n,
       [&](int j, auto&& visit) {

@@ -65,7 +65,7 @@ OneSidedDistance one_sided(const std::vector<Vec3>& samples, const TriangleMesh&
   std::vector<Point> points;
   points.reserve(samples.size());
   for (const Vec3& s : samples) points.push_back(point(s));
-  const std::vector<std::size_t> order = detail::hilbert_order(samples);
+  const std::vector<int> order = detail::hilbert_order(samples);
 
   std::vector<double> squared(samples.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 1024),

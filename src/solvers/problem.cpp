@@ -19,8 +19,7 @@ namespace {
 // original[u], the index in `mesh` of vertex u.
 std::unique_ptr<TetMesh> hilbert_ordered(const TetMesh& mesh, std::vector<int>& original) {
   const std::size_t n = mesh.vertices.size();
-  const std::vector<std::size_t> order = hilbert_order(mesh.vertices);
-  original.assign(order.begin(), order.end());
+  original = hilbert_order(mesh.vertices);
   auto ordered = std::make_unique<TetMesh>();
   ordered->vertices.resize(n);
   std::vector<int> renumbered(n);
